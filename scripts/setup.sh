@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian 12 machine for pcl_crf: installs the Debian packages it
+# needs, builds it in ./build, then either runs the main demo (--demo, the
+# default) or the whole test suite (--test).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+mode=${1:---demo}
+case "$mode" in
+  --demo|--test) ;;
+  *) echo "usage: $0 [--demo|--test]" >&2; exit 2 ;;
+esac
+
+packages=(build-essential cmake libpcl-dev liblbfgs-dev libgtest-dev libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  echo "== installing: ${missing[*]}"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTS=ON -DBUILD_APPS=ON -DBUILD_BENCHMARKS=ON
+cmake --build build -j "$jobs"
+
+if [ "$mode" = "--test" ]; then
+  cd build && ctest --output-on-failure -j "$jobs"
+else
+  bash scripts/demo.sh
+fi

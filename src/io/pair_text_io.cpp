@@ -1,0 +1,181 @@
+#include "pair_text_io.h"
+
+#include <pcl_crf/io/dataset_io.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace pcl_crf {
+namespace detail {
+namespace {
+
+constexpr const char* kMagic = "pcl_crf_pair";
+constexpr int kVersion = 1;
+
+struct LineReader
+{
+  std::string path;
+  int line_number = 0;
+
+  [[noreturn]] void
+  fail (const std::string& what) const
+  {
+    throw DatasetError (path + ":" + std::to_string (line_number) + ": " + what);
+  }
+
+  double
+  number (std::istringstream& in, const char* what) const
+  {
+    std::string token;
+    if (!(in >> token))
+      fail (std::string ("missing ") + what);
+    char* end = nullptr;
+    const double value = std::strtod (token.c_str (), &end);
+    if (end == token.c_str () || *end != '\0')
+      fail (std::string ("'") + token + "' is not a number (" + what + ")");
+    if (!std::isfinite (value))
+      fail (std::string (what) + " is NaN or infinite");
+    return value;
+  }
+
+  int
+  integer (std::istringstream& in, const char* what) const
+  {
+    const double value = number (in, what);
+    if (value != std::floor (value) || std::abs (value) > 1e9)
+      fail (std::string (what) + " must be an integer");
+    return static_cast<int> (value);
+  }
+
+  void
+  expectEnd (std::istringstream& in) const
+  {
+    std::string extra;
+    if (in >> extra)
+      fail ("unexpected trailing value '" + extra + "'");
+  }
+};
+
+void
+readHeader (LineReader& reader, std::istringstream& in)
+{
+  if (reader.integer (in, "format version") != kVersion)
+    reader.fail ("unsupported format version (this reader knows version " +
+                 std::to_string (kVersion) + ")");
+}
+
+void
+readObject (LineReader& reader, std::istringstream& in, ScanPair& pair)
+{
+  ObjectTruth object;
+  object.id = reader.integer (in, "object id");
+  std::string motion_kind;
+  in >> motion_kind;
+  if (motion_kind != "static" && motion_kind != "moving")
+    reader.fail ("object motion kind must be 'static' or 'moving', got '" + motion_kind + "'");
+  object.is_static = motion_kind == "static";
+  const double x = reader.number (in, "object x");
+  const double y = reader.number (in, "object y");
+  const double theta = reader.number (in, "object theta");
+  object.T_target_source = makeRigid2d (x, y, theta);
+  if (!(in >> object.kind))
+    reader.fail ("missing object kind (e.g. world, car, pedestrian)");
+  reader.expectEnd (in);
+  pair.objects.push_back (object);
+}
+
+}  // namespace
+
+void
+readPairText (const std::string& path, ScanPair& pair)
+{
+  std::ifstream file (path);
+  if (!file)
+    throw DatasetError (path + ": cannot open (missing pair.txt?)");
+  LineReader reader{path};
+  bool seen_header = false, seen_sensor = false, seen_odometry = false, seen_covariance = false;
+  std::string line;
+  while (std::getline (file, line)) {
+    ++reader.line_number;
+    std::istringstream in (line);
+    std::string key;
+    if (!(in >> key) || key[0] == '#')
+      continue;
+    if (!seen_header && key != kMagic)
+      reader.fail (std::string ("the first line must be '") + kMagic + " " + std::to_string (kVersion) + "'");
+    if (key == kMagic) {
+      readHeader (reader, in);
+      seen_header = true;
+    }
+    else if (key == "sensor") {
+      pair.sensor.beam_count = reader.integer (in, "beam count");
+      pair.sensor.angle_min = reader.number (in, "angle_min");
+      pair.sensor.angle_increment = reader.number (in, "angle_increment");
+      pair.sensor.range_max = reader.number (in, "range_max");
+      seen_sensor = true;
+    }
+    else if (key == "odometry") {
+      const double x = reader.number (in, "odometry x");
+      const double y = reader.number (in, "odometry y");
+      const double theta = reader.number (in, "odometry theta");
+      pair.odometry.T_source_target = makeRigid2d (x, y, theta);
+      seen_odometry = true;
+    }
+    else if (key == "odometry_covariance") {
+      for (int k = 0; k < 9; ++k)
+        pair.odometry.covariance (k / 3, k % 3) = reader.number (in, "odometry covariance entry");
+      seen_covariance = true;
+    }
+    else if (key == "object")
+      readObject (reader, in, pair);
+    else
+      reader.fail ("unknown key '" + key + "'");
+    reader.expectEnd (in);
+  }
+  reader.line_number = 0;
+  if (!seen_header)
+    reader.fail ("empty file or missing header line");
+  if (!seen_sensor)
+    reader.fail ("missing 'sensor' line");
+  if (!seen_odometry)
+    reader.fail ("missing 'odometry' line");
+  if (!seen_covariance)
+    reader.fail ("missing 'odometry_covariance' line");
+}
+
+void
+writePairText (const ScanPair& pair, const std::string& path)
+{
+  std::ofstream file (path);
+  if (!file)
+    throw DatasetError (path + ": cannot write");
+  char buffer[512];
+  auto xyt = [&] (const Rigid2d& T) {
+    const Eigen::Vector3d v = toXYTheta (T);
+    std::snprintf (buffer, sizeof (buffer), "%.17g %.17g %.17g", v.x (), v.y (), v.z ());
+    return std::string (buffer);
+  };
+  file << kMagic << " " << kVersion << "\n";
+  std::snprintf (buffer, sizeof (buffer), "sensor %d %.17g %.17g %.17g\n", pair.sensor.beam_count,
+                 pair.sensor.angle_min, pair.sensor.angle_increment, pair.sensor.range_max);
+  file << buffer;
+  file << "odometry " << xyt (pair.odometry.T_source_target) << "\n";
+  file << "odometry_covariance";
+  for (int k = 0; k < 9; ++k) {
+    std::snprintf (buffer, sizeof (buffer), " %.17g", pair.odometry.covariance (k / 3, k % 3));
+    file << buffer;
+  }
+  file << "\n";
+  for (const auto& object : pair.objects)
+    file << "object " << object.id << (object.is_static ? " static " : " moving ")
+         << xyt (object.T_target_source) << " " << (object.kind.empty () ? "object" : object.kind)
+         << "\n";
+  if (!file)
+    throw DatasetError (path + ": write failed");
+}
+
+}  // namespace detail
+}  // namespace pcl_crf
