@@ -19,6 +19,18 @@ struct EIGEN_ALIGN16 PointXYZLMatch
   PCL_MAKE_ALIGNED_OPERATOR_NEW
 };
 
+/** \brief A source point as a method predicted it (prediction.pcd):
+ *  position, predicted cluster (-1 = outlier cluster) and predicted match
+ *  (-1 = none).
+ */
+struct EIGEN_ALIGN16 PointXYZClusterMatch
+{
+  PCL_ADD_POINT4D;
+  std::int32_t cluster;
+  std::int32_t match;
+  PCL_MAKE_ALIGNED_OPERATOR_NEW
+};
+
 }  // namespace pcl_crf
 
 POINT_CLOUD_REGISTER_POINT_STRUCT (pcl_crf::PointXYZLMatch,
@@ -26,4 +38,11 @@ POINT_CLOUD_REGISTER_POINT_STRUCT (pcl_crf::PointXYZLMatch,
                                    (float, y, y)
                                    (float, z, z)
                                    (std::uint32_t, label, label)
+                                   (std::int32_t, match, match))
+
+POINT_CLOUD_REGISTER_POINT_STRUCT (pcl_crf::PointXYZClusterMatch,
+                                   (float, x, x)
+                                   (float, y, y)
+                                   (float, z, z)
+                                   (std::int32_t, cluster, cluster)
                                    (std::int32_t, match, match))

@@ -2,9 +2,8 @@
 #include <pcl_crf/point_types.h>
 
 #include "pair_text_io.h"
+#include "pcd_blob_io.h"
 
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/common/io.h>
 #include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 
@@ -16,21 +15,6 @@ namespace fs = std::filesystem;
 
 namespace pcl_crf {
 namespace {
-
-pcl::PCLPointCloud2
-readBlob (const std::string& path)
-{
-  if (!fs::is_regular_file (path))
-    throw DatasetError (path + ": file not found");
-  pcl::PCLPointCloud2 blob;
-  pcl::PCDReader reader;
-  if (reader.read (path, blob) != 0)
-    throw DatasetError (path + ": not a readable PCD file");
-  for (const char* field : {"x", "y", "label"})
-    if (pcl::getFieldIndex (blob, field) < 0)
-      throw DatasetError (path + ": missing field '" + field + "'");
-  return blob;
-}
 
 template <typename PointT> void
 copyPositions (const pcl::PointCloud<PointT>& cloud, const std::string& path, Eigen::Matrix2Xd& xy,
@@ -50,9 +34,7 @@ copyPositions (const pcl::PointCloud<PointT>& cloud, const std::string& path, Ei
 void
 readSource (const std::string& path, ScanPair& pair)
 {
-  const pcl::PCLPointCloud2 blob = readBlob (path);
-  if (pcl::getFieldIndex (blob, "match") < 0)
-    throw DatasetError (path + ": missing field 'match' (index of the corresponding target point, -1 for none)");
+  const pcl::PCLPointCloud2 blob = detail::readPcdBlob (path, {"x", "y", "label", "match"});
   pcl::PointCloud<PointXYZLMatch> cloud;
   pcl::fromPCLPointCloud2 (blob, cloud);
   copyPositions (cloud, path, pair.source, pair.source_object);
@@ -65,7 +47,7 @@ void
 readTarget (const std::string& path, ScanPair& pair)
 {
   pcl::PointCloud<pcl::PointXYZL> cloud;
-  pcl::fromPCLPointCloud2 (readBlob (path), cloud);
+  pcl::fromPCLPointCloud2 (detail::readPcdBlob (path, {"x", "y", "label"}), cloud);
   copyPositions (cloud, path, pair.target, pair.target_object);
 }
 

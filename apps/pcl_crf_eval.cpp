@@ -1,0 +1,205 @@
+// pcl_crf_eval: runs methods over a labelled dataset and prints the papers' tables.
+
+#include <pcl_crf/evaluation/evaluate.h>
+#include <pcl_crf/evaluation/prediction_io.h>
+#include <pcl_crf/evaluation/report.h>
+#include <pcl_crf/io/dataset_io.h>
+
+#include "app_common.h"
+
+#include <pcl/common/time.h>
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+using namespace pcl::console;
+
+namespace {
+
+struct EvalArguments
+{
+  std::string dataset;
+  std::vector<std::string> methods{"icp"};
+  std::string train_dir;
+  std::string model_dir;
+  std::string format = "table";
+  std::string output;
+  std::string save_predictions;
+  double tolerance = 0.1;
+  int max_pairs = 0;
+  int clusters = 0;
+  bool quiet = false;
+};
+
+void
+printHelp (const char* program)
+{
+  std::string methods;
+  for (const auto& name : pcl_crf::availableEvaluationMethods ())
+    methods += (methods.empty () ? "" : ", ") + name;
+  print_info ("Scores methods on a labelled scan-pair dataset (see data/README.md).\n\n"
+              "Usage: %s DATASET_DIR [options]\n\n", program);
+  print_info ("  --method NAMES        comma-separated methods (default: icp); known: %s\n", methods.c_str ());
+  print_info ("  --train DIR           training dataset for learned methods (default: none)\n");
+  print_info ("  --models DIR          load learned methods from DIR/<method>.model (pcl_crf_train writes them;\n"
+              "                        data/models holds the defaults trained on data/default/train)\n");
+  print_info ("  --clusters K          clusters for K-Means-like baselines (default: method's own)\n");
+  print_info ("  --format F            table | csv | json (default: table)\n");
+  print_info ("  --output FILE         write the csv/json/table there instead of stdout\n");
+  print_info ("  --save-predictions D  write every pair's prediction to D/<method>/<pair>/\n");
+  print_info ("  --tolerance M         association tolerance [m] (default: 0.1)\n");
+  print_info ("  --max-pairs N         evaluate the first N pairs only (default: all)\n");
+  print_info ("  -q                    no progress line\n");
+  print_info ("  -h                    this help\n");
+}
+
+bool
+parseArguments (int argc, char** argv, EvalArguments& args)
+{
+  const auto positional = pcl_crf::apps::positionalArguments (
+      argc, argv, {"--method", "--train", "--models", "--format", "--output", "--save-predictions",
+                   "--tolerance", "--max-pairs", "--clusters"});
+  if (positional.size () > 1)
+    return print_error ("Expected one dataset folder, got %zu arguments (see -h).\n", positional.size ()), false;
+  if (!positional.empty ())
+    args.dataset = positional.front ();
+  std::string methods;
+  if (parse_argument (argc, argv, "--method", methods) >= 0)
+    args.methods = pcl_crf::apps::splitCommas (methods);
+  parse_argument (argc, argv, "--train", args.train_dir);
+  parse_argument (argc, argv, "--models", args.model_dir);
+  parse_argument (argc, argv, "--format", args.format);
+  parse_argument (argc, argv, "--output", args.output);
+  parse_argument (argc, argv, "--save-predictions", args.save_predictions);
+  parse_argument (argc, argv, "--tolerance", args.tolerance);
+  parse_argument (argc, argv, "--max-pairs", args.max_pairs);
+  parse_argument (argc, argv, "--clusters", args.clusters);
+  args.quiet = find_switch (argc, argv, "-q");
+  if (args.dataset.empty ())
+    return print_error ("No dataset folder given (see -h).\n"), false;
+  if (args.methods.empty ())
+    return print_error ("--method needs at least one method name.\n"), false;
+  if (args.format != "table" && args.format != "csv" && args.format != "json")
+    return print_error ("--format must be table, csv or json, not '%s'.\n", args.format.c_str ()), false;
+  if (!(args.tolerance >= 0.0))
+    return print_error ("--tolerance must be a non-negative distance in metres.\n"), false;
+  if (args.max_pairs < 0 || args.clusters < 0)
+    return print_error ("--max-pairs and --clusters must not be negative.\n"), false;
+  return true;
+}
+
+pcl_crf::EvaluationProgress
+progressLine (bool quiet, const std::string& method)
+{
+  if (quiet)
+    return {};
+  const bool terminal = isatty (STDERR_FILENO);
+  return [terminal, method] (std::size_t done, std::size_t total, const std::string& name) {
+    if (terminal)
+      std::cerr << "\r[" << method << "] " << done << "/" << total << " " << name << "        " << std::flush;
+    else if (done == total || done % 10 == 0)
+      std::cerr << "[" << method << "] " << done << "/" << total << " pairs\n";
+    if (terminal && done == total)
+      std::cerr << "\n";
+  };
+}
+
+std::unique_ptr<pcl_crf::EvaluationMethod>
+prepareMethod (const std::string& name, const EvalArguments& args)
+{
+  pcl_crf::MethodSettings settings;
+  settings.cluster_count = args.clusters;
+  auto method = pcl_crf::createEvaluationMethod (name, settings);
+  const std::string model_file = (std::filesystem::path (args.model_dir) / (name + ".model")).string ();
+  if (!method->isLearned ())
+    return method;
+  if (!args.train_dir.empty ()) {
+    pcl::console::TicToc timer;
+    timer.tic ();
+    method->train (pcl_crf::loadDataset (args.train_dir));
+    if (!args.quiet)
+      print_info ("[%s] trained on %s in %g s\n", name.c_str (), args.train_dir.c_str (), timer.toc () / 1000.0);
+  }
+  else if (!args.model_dir.empty ())
+    method->loadModel (model_file);
+  else
+    throw std::invalid_argument ("method '" + name + "' learns its weights: give --train DIR or --models DIR");
+  return method;
+}
+
+void
+savePredictions (const EvalArguments& args, const std::vector<pcl_crf::ScanPair>& pairs,
+                 const pcl_crf::MethodEvaluation& evaluation)
+{
+  for (std::size_t k = 0; k < pairs.size (); ++k)
+    pcl_crf::savePrediction (pairs[k], evaluation.predictions[k], evaluation.method,
+                             (std::filesystem::path (args.save_predictions) / evaluation.method / pairs[k].name).string ());
+}
+
+void
+writeReport (const EvalArguments& args, const std::vector<pcl_crf::MethodEvaluation>& evaluations)
+{
+  std::ofstream file;
+  if (!args.output.empty ()) {
+    file.open (args.output);
+    if (!file)
+      throw std::runtime_error ("cannot write " + args.output);
+  }
+  std::ostream& out = args.output.empty () ? std::cout : file;
+  if (args.format == "csv")
+    pcl_crf::writeEvaluationCsv (out, evaluations);
+  else if (args.format == "json")
+    pcl_crf::writeEvaluationJson (out, evaluations);
+  else
+    pcl_crf::printEvaluationTable (out, evaluations);
+}
+
+int
+run (const EvalArguments& args)
+{
+  pcl::console::TicToc timer;
+  timer.tic ();
+  std::vector<pcl_crf::ScanPair> pairs = pcl_crf::loadDataset (args.dataset);
+  if (args.max_pairs > 0 && pairs.size () > static_cast<std::size_t> (args.max_pairs))
+    pairs.resize (args.max_pairs);
+  if (!args.quiet)
+    print_info ("Loaded %zu pairs from %s in %g ms\n", pairs.size (), args.dataset.c_str (), timer.toc ());
+  pcl_crf::ScoreOptions options;
+  options.match_tolerance = args.tolerance;
+  std::vector<pcl_crf::MethodEvaluation> evaluations;
+  for (const auto& name : args.methods) {
+    auto method = prepareMethod (name, args);
+    evaluations.push_back (pcl_crf::evaluateMethod (*method, pairs, options, progressLine (args.quiet, name)));
+    if (!args.save_predictions.empty ())
+      savePredictions (args, pairs, evaluations.back ());
+  }
+  writeReport (args, evaluations);
+  return 0;
+}
+
+}  // namespace
+
+int
+main (int argc, char** argv)
+{
+  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
+    printHelp (argv[0]);
+    return argc < 2 ? 1 : 0;
+  }
+  EvalArguments args;
+  if (!parseArguments (argc, argv, args))
+    return 1;
+  try {
+    return run (args);
+  }
+  catch (const std::exception& error) {
+    print_error ("%s\n", error.what ());
+    return 1;
+  }
+}

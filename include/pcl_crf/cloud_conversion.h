@@ -1,0 +1,49 @@
+#pragma once
+
+#include <pcl/point_cloud.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Copies the (x, y) of a PCL cloud into a 2 x N matrix, in cloud order.
+ *  Points with a non-finite x or y are skipped; \a kept receives the cloud index
+ *  of every column (so results can be mapped back to the user's indices).
+ */
+template <typename PointT> Eigen::Matrix2Xd
+toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullptr)
+{
+  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (cloud.size ()));
+  Eigen::Index n = 0;
+  if (kept)
+    kept->clear ();
+  for (std::size_t i = 0; i < cloud.size (); ++i) {
+    if (!std::isfinite (cloud[i].x) || !std::isfinite (cloud[i].y))
+      continue;
+    xy.col (n++) << cloud[i].x, cloud[i].y;
+    if (kept)
+      kept->push_back (static_cast<int> (i));
+  }
+  xy.conservativeResize (2, n);
+  return xy;
+}
+
+/** \brief Makes a PCL cloud (z = 0) from a 2 x N matrix. */
+template <typename PointT> void
+fromMatrix2X (const Eigen::Matrix2Xd& xy, pcl::PointCloud<PointT>& cloud)
+{
+  cloud.resize (static_cast<std::size_t> (xy.cols ()));
+  for (Eigen::Index i = 0; i < xy.cols (); ++i) {
+    cloud[i].x = static_cast<float> (xy (0, i));
+    cloud[i].y = static_cast<float> (xy (1, i));
+    cloud[i].z = 0.0f;
+  }
+  cloud.width = static_cast<std::uint32_t> (cloud.size ());
+  cloud.height = 1;
+  cloud.is_dense = true;
+}
+
+}  // namespace pcl_crf

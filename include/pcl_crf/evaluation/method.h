@@ -1,0 +1,77 @@
+#pragma once
+
+#include <pcl_crf/core/prediction.h>
+#include <pcl_crf/core/scan_pair.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Anything pcl_crf_eval can score: a baseline or an estimator, seen
+ *  through the common ScanPair -> Prediction form.
+ */
+class EvaluationMethod
+{
+public:
+  virtual ~EvaluationMethod () = default;
+
+  /** \brief Name as given to pcl_crf_eval --method. */
+  virtual std::string
+  name () const = 0;
+
+  /** \brief true when the method learns from labelled pairs (then train() or a
+   *  loaded model must come before predict()). */
+  virtual bool
+  isLearned () const
+  {
+    return false;
+  }
+
+  /** \brief Learns the method's parameters from labelled pairs (no-op for
+   *  methods that learn nothing). */
+  virtual void
+  train (const std::vector<ScanPair>& /*training_pairs*/)
+  {}
+
+  /** \brief Writes the learned parameters as a versioned text model file.
+   *  \throws std::runtime_error when the method learns nothing or cannot write. */
+  virtual void
+  saveModel (const std::string& /*path*/) const
+  {
+    throw std::runtime_error ("method '" + name () + "' has no learned model to save");
+  }
+
+  /** \brief Reads a model file written by saveModel (checking its version and
+   *  every field). \throws std::runtime_error naming the problem. */
+  virtual void
+  loadModel (const std::string& /*path*/)
+  {
+    throw std::runtime_error ("method '" + name () + "' has no learned model to load");
+  }
+
+  /** \brief The method's answer for one pair. Must not read the pair's ground
+   *  truth except the odometry and sensor metadata. */
+  virtual Prediction
+  predict (const ScanPair& pair) = 0;
+};
+
+/** \brief Settings shared by the methods pcl_crf_eval can build. */
+struct MethodSettings
+{
+  /** the number of clusters given to K-Means-like baselines (0 = method default). */
+  int cluster_count = 0;
+};
+
+/** \brief Names of every method createEvaluationMethod() knows, in display order. */
+std::vector<std::string>
+availableEvaluationMethods ();
+
+/** \brief Builds the named method. \throws std::invalid_argument for an unknown
+ *  name, listing the known ones. */
+std::unique_ptr<EvaluationMethod>
+createEvaluationMethod (const std::string& name, const MethodSettings& settings = {});
+
+}  // namespace pcl_crf

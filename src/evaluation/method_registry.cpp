@@ -1,0 +1,62 @@
+#include <pcl_crf/baselines/icp_baseline.h>
+#include <pcl_crf/evaluation/method.h>
+
+#include <functional>
+#include <stdexcept>
+#include <utility>
+
+namespace pcl_crf {
+namespace {
+
+/** PCL ICP from the odometry guess (pcl_crf/baselines/icp_baseline.h). */
+class IcpMethod : public EvaluationMethod
+{
+public:
+  std::string
+  name () const override
+  {
+    return "icp";
+  }
+
+  Prediction
+  predict (const ScanPair& pair) override
+  {
+    return runIcpBaseline (pair);
+  }
+};
+
+using MethodFactory = std::function<std::unique_ptr<EvaluationMethod> (const MethodSettings&)>;
+
+const std::vector<std::pair<std::string, MethodFactory>>&
+registry ()
+{
+  static const std::vector<std::pair<std::string, MethodFactory>> methods = {
+      {"icp", [] (const MethodSettings&) { return std::make_unique<IcpMethod> (); }},
+  };
+  return methods;
+}
+
+}  // namespace
+
+std::vector<std::string>
+availableEvaluationMethods ()
+{
+  std::vector<std::string> names;
+  for (const auto& entry : registry ())
+    names.push_back (entry.first);
+  return names;
+}
+
+std::unique_ptr<EvaluationMethod>
+createEvaluationMethod (const std::string& name, const MethodSettings& settings)
+{
+  for (const auto& entry : registry ())
+    if (entry.first == name)
+      return entry.second (settings);
+  std::string known;
+  for (const auto& entry : registry ())
+    known += (known.empty () ? "" : ", ") + entry.first;
+  throw std::invalid_argument ("unknown method '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace pcl_crf

@@ -1,0 +1,260 @@
+#include <pcl_crf/io/dataset_io.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using pcl_crf::DatasetError;
+using pcl_crf::ScanPair;
+
+namespace {
+
+ScanPair
+makeSmallPair ()
+{
+  ScanPair pair;
+  pair.name = "pair_0000";
+  pair.sensor = {5, -M_PI / 2, M_PI / 4, 30.0};
+  pair.source.resize (2, 4);
+  pair.source << 1.0, 2.0, 3.0, 4.0,
+                 0.5, 0.25, -0.5, 1.5;
+  pair.target.resize (2, 3);
+  pair.target << 1.1, 2.1, 3.1,
+                 0.5, 0.25, -0.5;
+  pair.source_object = {0, 0, 3, 3};
+  pair.target_object = {0, 0, 3};
+  pair.source_match = {0, 1, 2, pcl_crf::kNoMatch};
+  pair.objects.push_back ({0, true, pcl_crf::makeRigid2d (-0.1, 0.0, 0.0), "world"});
+  pair.objects.push_back ({3, false, pcl_crf::makeRigid2d (0.5, 0.1, 0.05), "car"});
+  pair.odometry.T_source_target = pcl_crf::makeRigid2d (0.1, 0.001, 0.002);
+  pair.odometry.covariance = Eigen::Vector3d (1e-4, 2e-4, 3e-5).asDiagonal ();
+  return pair;
+}
+
+class DatasetIo : public ::testing::Test
+{
+protected:
+  void
+  SetUp () override
+  {
+    dir_ = fs::temp_directory_path () /
+           ("pcl_crf_io_" + std::string (::testing::UnitTest::GetInstance ()->current_test_info ()->name ()));
+    fs::remove_all (dir_);
+  }
+  void
+  TearDown () override
+  {
+    fs::remove_all (dir_);
+  }
+
+  std::string
+  writeSmallPair ()
+  {
+    pcl_crf::saveScanPair (makeSmallPair (), (dir_ / "pair_0000").string ());
+    return (dir_ / "pair_0000").string ();
+  }
+
+  static void
+  replaceInFile (const fs::path& file, const std::string& from, const std::string& to)
+  {
+    std::ifstream in (file);
+    std::stringstream buffer;
+    buffer << in.rdbuf ();
+    std::string text = buffer.str ();
+    const auto at = text.find (from);
+    ASSERT_NE (at, std::string::npos) << from << " not in " << file;
+    text.replace (at, from.size (), to);
+    std::ofstream (file) << text;
+  }
+
+  void
+  expectLoadError (const std::string& pair_dir, const std::string& fragment)
+  {
+    try {
+      pcl_crf::loadScanPair (pair_dir);
+      FAIL () << "expected a DatasetError containing '" << fragment << "'";
+    }
+    catch (const DatasetError& error) {
+      EXPECT_NE (std::string (error.what ()).find (fragment), std::string::npos) << error.what ();
+    }
+  }
+
+  fs::path dir_;
+};
+
+TEST_F (DatasetIo, RoundTripKeepsEveryField)
+{
+  const ScanPair original = makeSmallPair ();
+  const ScanPair loaded = pcl_crf::loadScanPair (writeSmallPair ());
+  EXPECT_EQ (loaded.name, "pair_0000");
+  EXPECT_EQ (loaded.sensor.beam_count, 5);
+  EXPECT_DOUBLE_EQ (loaded.sensor.angle_min, original.sensor.angle_min);
+  EXPECT_DOUBLE_EQ (loaded.sensor.angle_increment, original.sensor.angle_increment);
+  EXPECT_DOUBLE_EQ (loaded.sensor.range_max, 30.0);
+  EXPECT_TRUE (loaded.source.isApprox (original.source, 1e-7));
+  EXPECT_TRUE (loaded.target.isApprox (original.target, 1e-7));
+  EXPECT_EQ (loaded.source_object, original.source_object);
+  EXPECT_EQ (loaded.target_object, original.target_object);
+  EXPECT_EQ (loaded.source_match, original.source_match);
+  ASSERT_EQ (loaded.objects.size (), 2u);
+  EXPECT_EQ (loaded.objects[1].id, 3);
+  EXPECT_FALSE (loaded.objects[1].is_static);
+  EXPECT_EQ (loaded.objects[1].kind, "car");
+  EXPECT_TRUE (loaded.objects[1].T_target_source.isApprox (original.objects[1].T_target_source, 1e-15));
+  EXPECT_TRUE (loaded.odometry.T_source_target.isApprox (original.odometry.T_source_target, 1e-15));
+  EXPECT_TRUE (loaded.odometry.covariance.isApprox (original.odometry.covariance, 1e-15));
+}
+
+TEST_F (DatasetIo, WritingTwiceGivesIdenticalBytes)
+{
+  const std::string first = writeSmallPair ();
+  std::ifstream a (fs::path (first) / "source.pcd");
+  std::stringstream sa;
+  sa << a.rdbuf ();
+  pcl_crf::saveScanPair (makeSmallPair (), (dir_ / "again").string ());
+  std::ifstream b (dir_ / "again" / "source.pcd");
+  std::stringstream sb;
+  sb << b.rdbuf ();
+  EXPECT_EQ (sa.str (), sb.str ());
+}
+
+TEST_F (DatasetIo, DatasetListsPairsInSortedOrder)
+{
+  ScanPair pair = makeSmallPair ();
+  pair.name = "b";
+  ScanPair other = makeSmallPair ();
+  other.name = "a";
+  pcl_crf::saveDataset ({pair, other}, dir_.string ());
+  const auto pairs = pcl_crf::loadDataset (dir_.string ());
+  ASSERT_EQ (pairs.size (), 2u);
+  EXPECT_EQ (pairs[0].name, "a");
+  EXPECT_EQ (pairs[1].name, "b");
+}
+
+TEST_F (DatasetIo, MissingDatasetFolderIsAnError)
+{
+  EXPECT_THROW (pcl_crf::loadDataset ((dir_ / "nowhere").string ()), DatasetError);
+  fs::create_directories (dir_);
+  EXPECT_THROW (pcl_crf::loadDataset (dir_.string ()), DatasetError);
+}
+
+TEST_F (DatasetIo, MissingFilesAreNamed)
+{
+  const std::string pair_dir = writeSmallPair ();
+  fs::remove (fs::path (pair_dir) / "target.pcd");
+  expectLoadError (pair_dir, "target.pcd: file not found");
+  fs::remove (fs::path (pair_dir) / "pair.txt");
+  expectLoadError (pair_dir, "pair.txt");
+}
+
+TEST_F (DatasetIo, CorruptPcdIsAnError)
+{
+  const std::string pair_dir = writeSmallPair ();
+  std::ofstream (fs::path (pair_dir) / "source.pcd") << "this is not a point cloud\n";
+  expectLoadError (pair_dir, "source.pcd");
+}
+
+TEST_F (DatasetIo, TruncatedPcdIsAnError)
+{
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 30");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 30");
+  expectLoadError (pair_dir, "target.pcd");
+}
+
+TEST_F (DatasetIo, MissingMatchFieldIsNamed)
+{
+  const std::string pair_dir = writeSmallPair ();
+  fs::copy_file (fs::path (pair_dir) / "target.pcd", fs::path (pair_dir) / "source.pcd",
+                 fs::copy_options::overwrite_existing);
+  expectLoadError (pair_dir, "missing field 'match'");
+}
+
+TEST_F (DatasetIo, MatchOutOfRangeIsAnError)
+{
+  ScanPair pair = makeSmallPair ();
+  pair.source_match[1] = 7;
+  EXPECT_THROW (pcl_crf::saveScanPair (pair, (dir_ / "bad").string ()), DatasetError);
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "source.pcd", "4 1.5 0 3 -1", "4 1.5 0 3 9");
+  expectLoadError (pair_dir, "out of range");
+}
+
+TEST_F (DatasetIo, NanCoordinateIsAnError)
+{
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "2.0999999 0.25", "nan 0.25");
+  expectLoadError (pair_dir, "NaN");
+  ScanPair pair = makeSmallPair ();
+  pair.source (0, 2) = std::numeric_limits<double>::infinity ();
+  EXPECT_THROW (pcl_crf::saveScanPair (pair, (dir_ / "bad").string ()), DatasetError);
+}
+
+TEST_F (DatasetIo, InconsistentSizesAreErrors)
+{
+  ScanPair pair = makeSmallPair ();
+  pair.source_object.pop_back ();
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+  pair = makeSmallPair ();
+  pair.source_match.push_back (0);
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+  pair = makeSmallPair ();
+  pair.sensor.beam_count = 2;
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+}
+
+TEST_F (DatasetIo, EmptyScanIsAnError)
+{
+  ScanPair pair = makeSmallPair ();
+  pair.target.resize (2, 0);
+  pair.target_object.clear ();
+  pair.source_match.assign (4, pcl_crf::kNoMatch);
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+}
+
+TEST_F (DatasetIo, UndeclaredObjectIdIsAnError)
+{
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "pair.txt", "object 3 moving", "object 4 moving");
+  expectLoadError (pair_dir, "object id 3 that no object line declares");
+}
+
+TEST_F (DatasetIo, PairTextErrorsNameTheLine)
+{
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path text = fs::path (pair_dir) / "pair.txt";
+  replaceInFile (text, "sensor 5", "sensor five");
+  expectLoadError (pair_dir, "pair.txt:2: 'five' is not a number");
+  replaceInFile (text, "sensor five", "sensor 5");
+  replaceInFile (text, "pcl_crf_pair 1", "pcl_crf_pair 9");
+  expectLoadError (pair_dir, "unsupported format version");
+  replaceInFile (text, "pcl_crf_pair 9", "pcl_crf_pair 1");
+  replaceInFile (text, "odometry_covariance", "odometry_variance");
+  expectLoadError (pair_dir, "unknown key 'odometry_variance'");
+  replaceInFile (text, "odometry_variance", "odometry_covariance");
+  replaceInFile (text, "object 0 static", "object 0 moving");
+  expectLoadError (pair_dir, "exactly one object must be the static world");
+}
+
+TEST_F (DatasetIo, NanInPairTextIsAnError)
+{
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "pair.txt", "odometry 0.10000000000000001", "odometry nan");
+  expectLoadError (pair_dir, "NaN or infinite");
+}
+
+TEST_F (DatasetIo, BadCovarianceIsAnError)
+{
+  ScanPair pair = makeSmallPair ();
+  pair.odometry.covariance (0, 0) = 0.0;
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+  pair = makeSmallPair ();
+  pair.odometry.covariance (0, 1) = 1e-3;
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+}
+
+}  // namespace
