@@ -1,0 +1,112 @@
+#include <pcl_crf/io/dataset_io.h>
+
+#include "app_runner.h"
+#include "synthetic_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using pcl_crf::test::runTool;
+
+namespace {
+
+class EvalTool : public ::testing::Test
+{
+protected:
+  void
+  SetUp () override
+  {
+    // One folder per test: ctest runs tests in parallel.
+    dir_ = fs::temp_directory_path () /
+           ("pcl_crf_eval_tool_" + std::string (::testing::UnitTest::GetInstance ()->current_test_info ()->name ()));
+    fs::remove_all (dir_);
+    auto pair = pcl_crf::test::staticRoomPair (pcl_crf::makeRigid2d (0.3, 0.1, 0.05),
+                                               pcl_crf::makeRigid2d (0.02, 0.0, 0.0), 0.02);
+    pair.sensor.beam_count = 5000;
+    pair.name = "0000";
+    pcl_crf::saveDataset ({pair}, (dir_ / "set").string ());
+  }
+  void
+  TearDown () override
+  {
+    fs::remove_all (dir_);
+  }
+  fs::path dir_;
+};
+
+TEST_F (EvalTool, HelpListsOptionsWithDefaults)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const auto run = runTool ("pcl_crf_eval", "-h");
+  EXPECT_EQ (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("--method NAMES"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("default: 0.1"), std::string::npos) << run.output;
+}
+
+TEST_F (EvalTool, PrintsTableForIcp)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const auto run = runTool ("pcl_crf_eval", (dir_ / "set").string () + " --method icp -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("association_accuracy [fraction]"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("pairs: icp=1"), std::string::npos) << run.output;
+}
+
+TEST_F (EvalTool, WritesCsvJsonAndPredictions)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const std::string set = (dir_ / "set").string ();
+  const auto csv = runTool ("pcl_crf_eval", set + " --format csv -q");
+  ASSERT_EQ (csv.exit_code, 0) << csv.output;
+  EXPECT_NE (csv.output.find ("method,metric,unit,mean,std,count"), std::string::npos);
+  EXPECT_NE (csv.output.find ("icp,ego_translation_error,m,"), std::string::npos);
+  const std::string json_file = (dir_ / "out.json").string ();
+  const auto json = runTool ("pcl_crf_eval", set + " --format json -q --output " + json_file +
+                                                 " --save-predictions " + (dir_ / "pred").string ());
+  ASSERT_EQ (json.exit_code, 0) << json.output;
+  std::ifstream in (json_file);
+  const std::string text ((std::istreambuf_iterator<char> (in)), std::istreambuf_iterator<char> ());
+  EXPECT_EQ (text.rfind ("{\"methods\": [{\"method\": \"icp\", \"pairs\": 1,", 0), 0u) << text;
+  EXPECT_TRUE (fs::is_regular_file (dir_ / "pred" / "icp" / "0000" / "prediction.pcd"));
+  EXPECT_TRUE (fs::is_regular_file (dir_ / "pred" / "icp" / "0000" / "prediction.txt"));
+}
+
+TEST_F (EvalTool, BadArgumentsAndFilesAreClearErrors)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const std::string set = (dir_ / "set").string ();
+  auto run = runTool ("pcl_crf_eval", (dir_ / "missing").string ());
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("dataset folder not found"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_eval", set + " --method nonsense");
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("unknown method 'nonsense'"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_eval", set + " --format xml");
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("--format must be"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_eval", set + " --tolerance -1");
+  EXPECT_NE (run.exit_code, 0);
+  std::ofstream (dir_ / "set" / "0000" / "pair.txt") << "garbage\n";
+  run = runTool ("pcl_crf_eval", set);
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("pair.txt:1"), std::string::npos) << run.output;
+}
+
+TEST_F (EvalTool, TrainToolRejectsMethodsWithoutModels)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  auto run = runTool ("pcl_crf_train", "-h");
+  EXPECT_EQ (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("--method NAME"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_train", (dir_ / "set").string () + " --method icp -o " + (dir_ / "m").string ());
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("learns nothing"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_train", (dir_ / "set").string ());
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("required"), std::string::npos) << run.output;
+}
+
+}  // namespace
