@@ -1,0 +1,173 @@
+// Tests of the pcl_crf_simulate command-line tool and of the shipped dataset.
+// They run the built program, found through PCL_CRF_APPS_DIR (set by ctest).
+#include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/simulation/scan_pair_simulator.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace sim = pcl_crf::simulation;
+
+/** The simulate program, or "" when PCL_CRF_APPS_DIR is not set. */
+std::string
+simulateProgram ()
+{
+  const char* dir = std::getenv ("PCL_CRF_APPS_DIR");
+  return dir ? (fs::path (dir) / "pcl_crf_simulate").string () : std::string ();
+}
+
+#define REQUIRE_SIMULATE_PROGRAM()                                                                  \
+  const std::string program = simulateProgram ();                                                   \
+  if (program.empty ())                                                                             \
+    GTEST_SKIP () << "PCL_CRF_APPS_DIR is not set (run through ctest)";                            \
+  ASSERT_TRUE (fs::exists (program)) << program
+
+std::string
+quote (const std::string& text)
+{
+  std::string out = "'";
+  for (char c : text)
+    out += c == '\'' ? std::string ("'\\''") : std::string (1, c);
+  return out + "'";
+}
+
+/** Runs a shell command; returns its exit code and fills \a output with stdout + stderr. */
+int
+run (const std::string& command, std::string* output = nullptr)
+{
+  const fs::path log = fs::temp_directory_path () / ("pcl_crf_tool_log_" + std::to_string (::getpid ()));
+  const int status = std::system ((command + " > " + quote (log.string ()) + " 2>&1").c_str ());
+  if (output) {
+    std::ifstream in (log);
+    std::stringstream text;
+    text << in.rdbuf ();
+    *output = text.str ();
+  }
+  fs::remove (log);
+  return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+}
+
+fs::path
+freshTempDir (const std::string& name)
+{
+  const fs::path dir = fs::temp_directory_path () / ("pcl_crf_" + name + "_" + std::to_string (::getpid ()));
+  fs::remove_all (dir);
+  fs::create_directories (dir);
+  return dir;
+}
+
+std::string
+readBytes (const fs::path& path)
+{
+  std::ifstream in (path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf ();
+  return bytes.str ();
+}
+
+/** Relative paths of every regular file under \a root. */
+std::set<std::string>
+filesUnder (const fs::path& root)
+{
+  std::set<std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator (root))
+    if (entry.is_regular_file ())
+      files.insert (fs::relative (entry.path (), root).generic_string ());
+  return files;
+}
+
+TEST (SimulatorTool, HelpListsEveryOption)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  std::string help;
+  EXPECT_EQ (run (quote (program) + " -h", &help), 0);
+  for (const char* option : {"-o DIR", "--pairs", "--first", "--seed", "--beams", "--fov", "--range", "--noise",
+                             "--dropout", "--speed", "--yaw-rate", "--moving", "--object-speed", "--scene",
+                             "--spacing", "--travel", "--scan-rate", "--odom-noise", "--legs", "--name-prefix"})
+    EXPECT_NE (help.find (option), std::string::npos) << option;
+  EXPECT_NE (help.find ("default 361"), std::string::npos);
+  EXPECT_NE (help.find ("default 0.01"), std::string::npos);
+}
+
+TEST (SimulatorTool, RejectsBadOptions)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path dir = freshTempDir ("sim_bad_options");
+  const std::string base = quote (program) + " -o " + quote ((dir / "out").string ()) + " ";
+  for (const char* bad : {"--pairs 0", "--pairs -3", "--pairs abc", "--beams 1", "--beams 0", "--noise -0.1",
+                          "--dropout 1", "--dropout -0.5", "--dropout 2", "--scene highway", "--spacing sometimes",
+                          "--fov 0", "--range -1", "--speed 0", "--odom-noise 0.1,0.1", "--odom-noise 0.1,-1,0.1",
+                          "--travel 4,2", "--scene static --moving 2", "--seed -1", "--frobnicate 3", "--pairs"}) {
+    std::string output;
+    EXPECT_NE (run (base + bad, &output), 0) << bad;
+    EXPECT_NE (output.find ("pcl_crf_simulate"), std::string::npos) << bad << ": " << output;
+  }
+  std::string output;
+  EXPECT_NE (run (quote (program) + " --pairs 2", &output), 0);  // no -o
+  EXPECT_NE (output.find ("-o DIR"), std::string::npos);
+  EXPECT_FALSE (fs::exists (dir / "out"));
+  fs::remove_all (dir);
+}
+
+TEST (SimulatorTool, WritesTheLibrarysPairs)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path dir = freshTempDir ("sim_tool_output");
+  ASSERT_EQ (run (quote (program) + " -q -o " + quote (dir.string ()) +
+                  " --pairs 2 --first 3 --seed 5 --beams 181 --scene crossing --moving 2 --name-prefix run_"),
+             0);
+  EXPECT_TRUE (fs::exists (dir / "run_manifest.txt"));
+  const auto loaded = pcl_crf::loadDataset (dir.string ());
+  ASSERT_EQ (loaded.size (), 2u);
+  EXPECT_EQ (loaded[0].name, "run_0003");
+  EXPECT_EQ (loaded[1].name, "run_0004");
+  sim::SimulatorConfig config;
+  config.seed = 5;
+  config.laser.beam_count = 181;
+  config.scene = sim::SceneType::Crossing;
+  config.moving_count = 2;
+  config.name_prefix = "run_";
+  const pcl_crf::ScanPair expected = sim::ScanPairSimulator (config).simulate (4);
+  EXPECT_EQ (loaded[1].source, expected.source);
+  EXPECT_EQ (loaded[1].target, expected.target);
+  EXPECT_EQ (loaded[1].source_match, expected.source_match);
+  EXPECT_EQ (loaded[1].objects.size (), expected.objects.size ());
+  fs::remove_all (dir);
+}
+
+TEST (SimulatorTool, RegeneratesShippedDatasetByteIdentically)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path shipped = fs::path (PCL_CRF_SOURCE_DIR) / "data" / "default";
+  const fs::path script = fs::path (PCL_CRF_SOURCE_DIR) / "data" / "generate_default.sh";
+  ASSERT_TRUE (fs::is_directory (shipped)) << shipped;
+  const fs::path dir = freshTempDir ("sim_regenerate");
+  std::string output;
+  ASSERT_EQ (run ("bash " + quote (script.string ()) + " " + quote (program) + " " + quote (dir.string ()), &output), 0)
+      << output;
+  const std::set<std::string> expected = filesUnder (shipped), produced = filesUnder (dir);
+  EXPECT_EQ (produced, expected);
+  EXPECT_GE (expected.size (), 2u * (30u * 3u + 1u));
+  for (const auto& file : expected) {
+    if (produced.count (file)) {
+      EXPECT_TRUE (readBytes (shipped / file) == readBytes (dir / file)) << file << " differs";
+    }
+  }
+  // The shipped splits load and validate.
+  EXPECT_EQ (pcl_crf::loadDataset ((shipped / "train").string ()).size (), 30u);
+  EXPECT_EQ (pcl_crf::loadDataset ((shipped / "test").string ()).size (), 30u);
+  fs::remove_all (dir);
+}
+
+}  // namespace
