@@ -61,7 +61,7 @@ printEvaluationTable (std::ostream& out, const std::vector<MethodEvaluation>& ev
 {
   if (evaluations.empty ())
     return;
-  const std::size_t name_width = 34, cell_width = 26;
+  const std::size_t name_width = 44, cell_width = 26;
   out << std::left << std::setw (name_width) << "metric [unit]";
   for (const auto& evaluation : evaluations)
     out << std::setw (cell_width) << evaluation.method;
