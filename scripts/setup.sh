@@ -11,7 +11,8 @@ case "$mode" in
   *) echo "usage: $0 [--demo|--test]" >&2; exit 2 ;;
 esac
 
-packages=(build-essential cmake libpcl-dev liblbfgs-dev libgtest-dev libbenchmark-dev)
+packages=(build-essential cmake libpcl-dev liblbfgs-dev libgtest-dev libbenchmark-dev zlib1g-dev
+          xvfb xauth librosbag-dev libsensor-msgs-dev libgeometry-msgs-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -1,0 +1,167 @@
+#pragma once
+// Command-line options for reading real laser logs, shared by pcl_crf_run and
+// pcl_crf_viewer (--log): which topics, which ranges, how scans are paired.
+
+#include <pcl_crf/logs/log_pairs.h>
+#include <pcl_crf/logs/read_laser_log.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace pcl_crf {
+namespace apps {
+
+/** Parses "--name VALUE" as a number when present. Returns false (after a
+ *  print_error naming the option) when the value is missing or not a number. */
+inline bool
+numberOption (int argc, char** argv, const char* name, double& value)
+{
+  const int index = pcl::console::find_argument (argc, argv, name);
+  if (index < 0)
+    return true;
+  if (index + 1 >= argc) {
+    pcl::console::print_error ("%s needs a value (see -h).\n", name);
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = std::strtod (argv[index + 1], &end);
+  if (end == argv[index + 1] || *end != '\0' || errno == ERANGE || !std::isfinite (parsed)) {
+    pcl::console::print_error ("%s needs a number, not '%s'.\n", name, argv[index + 1]);
+    return false;
+  }
+  value = parsed;
+  return true;
+}
+
+/** Same as numberOption for a whole number >= \a minimum. */
+inline bool
+countOption (int argc, char** argv, const char* name, long& value, long minimum)
+{
+  double parsed = static_cast<double> (value);
+  if (!numberOption (argc, argv, name, parsed))
+    return false;
+  if (parsed != std::floor (parsed) || parsed < static_cast<double> (minimum) || parsed > 1e12) {
+    pcl::console::print_error ("%s needs a whole number >= %ld, not '%g'.\n", name, minimum, parsed);
+    return false;
+  }
+  value = static_cast<long> (parsed);
+  return true;
+}
+
+/** Parses "--name A,B,C" into exactly \a count numbers when present. */
+inline bool
+numberListOption (int argc, char** argv, const char* name, std::vector<double>& values, std::size_t count)
+{
+  std::string text;
+  if (pcl::console::parse_argument (argc, argv, name, text) < 0)
+    return pcl::console::find_argument (argc, argv, name) < 0 ||
+           (pcl::console::print_error ("%s needs a value (see -h).\n", name), false);
+  std::vector<double> parsed;
+  std::stringstream in (text);
+  std::string part;
+  while (std::getline (in, part, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod (part.c_str (), &end);
+    if (part.empty () || *end != '\0' || !std::isfinite (v)) {
+      pcl::console::print_error ("%s needs %zu comma-separated numbers, not '%s'.\n", name, count, text.c_str ());
+      return false;
+    }
+    parsed.push_back (v);
+  }
+  if (parsed.size () != count) {
+    pcl::console::print_error ("%s needs %zu comma-separated numbers, not '%s'.\n", name, count, text.c_str ());
+    return false;
+  }
+  values = parsed;
+  return true;
+}
+
+/** How a log is read and paired. */
+struct LogArguments
+{
+  LaserLogReadOptions read;
+  LogPairOptions pairs;
+};
+
+/** The options of LogArguments that take a value (for positionalArguments). */
+inline std::set<std::string>
+logValueOptions ()
+{
+  return {"--step", "--min-range", "--max-range", "--scan-topic", "--pose-topic", "--object-topics",
+          "--laser-offset", "--pose-delay"};
+}
+
+/** The help lines of the log options. */
+inline void
+printLogOptionsHelp ()
+{
+  using pcl::console::print_info;
+  print_info ("  --step N               pair scan k with scan k+N (default: 1, consecutive scans)\n");
+  print_info ("  --label                give every point an object label and a true match from the\n"
+              "                         reference poses (default: off; unlabelled pairs)\n");
+  print_info (" CARMEN logs (.log, .log.gz; FLASER, ROBOTLASER1, ODOM):\n");
+  print_info ("  --min-range M          shortest valid reading [m] (default: 0.01)\n");
+  print_info ("  --max-range M          longest valid reading [m] (default: 30; 81.9, 50, 32.76 = no return)\n");
+  print_info (" ROS1 bags (.bag; sensor_msgs/LaserScan + geometry_msgs/PoseStamped) - %s:\n",
+              rosbagSupported () ? "supported in this build"
+                                 : "NOT supported in this build (needs librosbag-dev at configure time)");
+  print_info ("  --scan-topic T         LaserScan topic (default: /scan)\n");
+  print_info ("  --pose-topic T         ego reference pose topic (default: none, no reference motion)\n");
+  print_info ("  --object-topics A,B    reference pose topics of other moving objects (default: none)\n");
+  print_info ("  --laser-offset X,Y,TH  laser pose in the ego pose frame [m, m, rad] (default: 0,0,0;\n"
+              "                         the datmo bags of shared/data: -0.166,0.019,0)\n");
+  print_info ("  --pose-delay S         use the pose stamped t+S for the scan stamped t [s] (default: 0;\n"
+              "                         the datmo bags: 0.025)\n");
+}
+
+/** Reads the log options; false after a print_error. */
+inline bool
+parseLogArguments (int argc, char** argv, LogArguments& args)
+{
+  long step = 1;
+  if (!countOption (argc, argv, "--step", step, 1))
+    return false;
+  args.pairs.step = static_cast<std::size_t> (step);
+  args.pairs.label_points = pcl::console::find_switch (argc, argv, "--label");
+  CarmenReadOptions& carmen = args.read.carmen;
+  if (!numberOption (argc, argv, "--min-range", carmen.min_range) ||
+      !numberOption (argc, argv, "--max-range", carmen.max_range))
+    return false;
+  if (!(carmen.min_range >= 0.0) || !(carmen.max_range > carmen.min_range)) {
+    pcl::console::print_error ("--min-range and --max-range need 0 <= min < max [m].\n");
+    return false;
+  }
+  RosbagReadOptions& bag = args.read.rosbag;
+  pcl::console::parse_argument (argc, argv, "--scan-topic", bag.scan_topic);
+  pcl::console::parse_argument (argc, argv, "--pose-topic", bag.pose_topic);
+  std::string objects;
+  if (pcl::console::parse_argument (argc, argv, "--object-topics", objects) >= 0) {
+    std::stringstream in (objects);
+    std::string topic;
+    while (std::getline (in, topic, ','))
+      if (!topic.empty ())
+        bag.object_topics.push_back (topic);
+  }
+  std::vector<double> offset{0.0, 0.0, 0.0};
+  if (!numberListOption (argc, argv, "--laser-offset", offset, 3) ||
+      !numberOption (argc, argv, "--pose-delay", bag.pose_delay))
+    return false;
+  bag.T_pose_laser = makeRigid2d (offset[0], offset[1], offset[2]);
+  if (bag.scan_topic.empty ()) {
+    pcl::console::print_error ("--scan-topic needs a topic name.\n");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace apps
+}  // namespace pcl_crf

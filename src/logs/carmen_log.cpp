@@ -1,0 +1,307 @@
+#include <pcl_crf/logs/carmen_log.h>
+
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <optional>
+
+namespace pcl_crf {
+namespace {
+
+/** Reads whitespace-separated words and numbers from one log line. */
+class LineCursor
+{
+public:
+  explicit LineCursor (const std::string& line) : position_ (line.c_str ()) {}
+
+  bool
+  nextNumber (double& value)
+  {
+    skipSpace ();
+    if (*position_ == '\0')
+      return false;
+    char* end = nullptr;
+    errno = 0;
+    value = std::strtod (position_, &end);
+    if (end == position_ || (*end != '\0' && !std::isspace (static_cast<unsigned char> (*end))))
+      return false;
+    position_ = end;
+    return std::isfinite (value);
+  }
+
+  bool
+  nextWord (std::string& word)
+  {
+    skipSpace ();
+    const char* begin = position_;
+    while (*position_ != '\0' && !std::isspace (static_cast<unsigned char> (*position_)))
+      ++position_;
+    word.assign (begin, position_);
+    return !word.empty ();
+  }
+
+private:
+  void
+  skipSpace ()
+  {
+    while (*position_ != '\0' && std::isspace (static_cast<unsigned char> (*position_)))
+      ++position_;
+  }
+
+  const char* position_;
+};
+
+/** One laser record as logged, before the odometry rule is applied. */
+struct RawScan
+{
+  LaserScanRecord record;
+  Rigid2d odometry_fields = Rigid2d::Identity ();
+  /** last ODOM pose seen between the previous laser record and this one. */
+  std::optional<Rigid2d> last_odom_before;
+};
+
+class CarmenParser
+{
+public:
+  CarmenParser (const std::string& name, const CarmenReadOptions& options) : name_ (name), options_ (options) {}
+
+  /** Parses one line; returns false once max_scans laser records were read. */
+  bool
+  parseLine (const std::string& line, std::size_t line_number)
+  {
+    line_number_ = line_number;
+    LineCursor cursor (line);
+    std::string type;
+    if (!cursor.nextWord (type) || type[0] == '#')
+      return true;
+    if (type == "ODOM")
+      parseOdom (cursor);
+    else if (type == "FLASER")
+      parseFlaser (cursor);
+    else if (type == "ROBOTLASER1")
+      parseRobotLaser (cursor);
+    return options_.max_scans == 0 || scans_.size () < options_.max_scans;
+  }
+
+  LaserLog
+  finish ()
+  {
+    if (scans_.empty ())
+      throw LogError (name_ + ": no FLASER or ROBOTLASER1 record (is this a CARMEN log?)");
+    LaserLog log;
+    log.path = name_;
+    bool corrected = true;
+    for (const auto& scan : scans_) {
+      const Rigid2d difference = scan.odometry_fields.inverse () * scan.record.pose;
+      corrected = corrected && difference.translation ().norm () < 1e-6 && std::abs (rotationAngle (difference)) < 1e-6;
+    }
+    log.has_reference_poses = corrected;
+    for (std::size_t j = 0; j < scans_.size (); ++j) {
+      LaserScanRecord record = scans_[j].record;
+      record.has_pose = corrected;
+      if (j > 0) {
+        if (corrected && scans_[j].last_odom_before) {
+          record.odometry_step = scans_[j - 1].record.pose.inverse () * *scans_[j].last_odom_before;
+          record.has_odometry_step = true;
+        }
+        else if (!corrected) {
+          record.odometry_step = scans_[j - 1].odometry_fields.inverse () * scans_[j].odometry_fields;
+          record.has_odometry_step = true;
+        }
+      }
+      log.has_odometry = log.has_odometry || record.has_odometry_step;
+      log.scans.push_back (std::move (record));
+    }
+    return log;
+  }
+
+private:
+  [[noreturn]] void
+  fail (const std::string& what) const
+  {
+    throw LogError (name_ + ":" + std::to_string (line_number_) + ": " + what);
+  }
+
+  double
+  number (LineCursor& cursor, const char* record, const char* field)
+  {
+    double value = 0.0;
+    if (!cursor.nextNumber (value))
+      fail (std::string (record) + " record: " + field + " is missing or not a finite number");
+    return value;
+  }
+
+  Rigid2d
+  pose (LineCursor& cursor, const char* record, const char* field)
+  {
+    const double x = number (cursor, record, field);
+    const double y = number (cursor, record, field);
+    const double theta = number (cursor, record, field);
+    return makeRigid2d (x, y, theta);
+  }
+
+  int
+  readingCount (LineCursor& cursor, const char* record)
+  {
+    const double n = number (cursor, record, "the number of readings");
+    if (n < 2 || n > 100000 || n != std::floor (n))
+      fail (std::string (record) + " record: the number of readings must be an integer in [2, 100000], not " +
+            std::to_string (n));
+    return static_cast<int> (n);
+  }
+
+  void
+  parseOdom (LineCursor& cursor)
+  {
+    pending_odom_ = pose (cursor, "ODOM", "the pose x y theta");
+  }
+
+  void
+  addScan (const SensorInfo& sensor, const std::vector<double>& ranges, const Rigid2d& pose,
+           const Rigid2d& odometry_fields, double stamp)
+  {
+    RawScan scan;
+    scan.record.sensor = sensor;
+    scan.record.points.resize (2, static_cast<Eigen::Index> (ranges.size ()));
+    Eigen::Index n = 0;
+    for (std::size_t i = 0; i < ranges.size (); ++i) {
+      const double r = ranges[i];
+      if (!(r >= options_.min_range && r <= options_.max_range))
+        continue;
+      const double angle = sensor.angle_min + static_cast<double> (i) * sensor.angle_increment;
+      scan.record.points.col (n++) << r * std::cos (angle), r * std::sin (angle);
+      scan.record.beams.push_back (static_cast<int> (i));
+    }
+    scan.record.points.conservativeResize (2, n);
+    scan.record.pose = pose;
+    scan.record.stamp = stamp;
+    scan.odometry_fields = odometry_fields;
+    scan.last_odom_before = pending_odom_;
+    pending_odom_.reset ();
+    scans_.push_back (std::move (scan));
+  }
+
+  // FLASER n r1..rn x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
+  void
+  parseFlaser (LineCursor& cursor)
+  {
+    const int n = readingCount (cursor, "FLASER");
+    std::vector<double> ranges (n);
+    for (auto& r : ranges)
+      r = number (cursor, "FLASER", "a range reading");
+    SensorInfo sensor;
+    sensor.beam_count = n;
+    sensor.angle_min = options_.angle_min;
+    sensor.angle_increment = options_.field_of_view / (n - 1);
+    sensor.range_max = options_.max_range;
+    const Rigid2d laser_pose = pose (cursor, "FLASER", "the pose x y theta");
+    const Rigid2d odometry_fields = pose (cursor, "FLASER", "the odometry x y theta");
+    const double stamp = number (cursor, "FLASER", "the timestamp");
+    addScan (sensor, ranges, laser_pose, odometry_fields, stamp);
+  }
+
+  // ROBOTLASER1 laser_type start_angle fov resolution max_range accuracy remission_mode
+  //   n r1..rn m e1..em laser_x laser_y laser_theta robot_x robot_y robot_theta
+  //   tv rv forward_safety side_safety turn_axis timestamp host logger_timestamp
+  void
+  parseRobotLaser (LineCursor& cursor)
+  {
+    const char* record = "ROBOTLASER1";
+    number (cursor, record, "the laser type");
+    SensorInfo sensor;
+    sensor.angle_min = number (cursor, record, "the start angle");
+    number (cursor, record, "the field of view");
+    sensor.angle_increment = number (cursor, record, "the angular resolution");
+    const double logged_max = number (cursor, record, "the maximum range");
+    number (cursor, record, "the accuracy");
+    number (cursor, record, "the remission mode");
+    const int n = readingCount (cursor, record);
+    if (!(sensor.angle_increment > 0.0))
+      fail ("ROBOTLASER1 record: the angular resolution must be positive");
+    std::vector<double> ranges (n);
+    for (auto& r : ranges)
+      r = number (cursor, record, "a range reading");
+    const double remissions = number (cursor, record, "the number of remissions");
+    if (remissions < 0 || remissions > 100000 || remissions != std::floor (remissions))
+      fail ("ROBOTLASER1 record: the number of remissions must be a non-negative integer");
+    for (int i = 0; i < static_cast<int> (remissions); ++i)
+      number (cursor, record, "a remission value");
+    sensor.beam_count = n;
+    sensor.range_max = logged_max > 0.0 ? std::min (options_.max_range, logged_max) : options_.max_range;
+    const Rigid2d laser_pose = pose (cursor, record, "the laser pose x y theta");
+    const Rigid2d robot_pose = pose (cursor, record, "the robot pose x y theta");
+    for (int i = 0; i < 5; ++i)
+      number (cursor, record, "a velocity or safety field");
+    const double stamp = number (cursor, record, "the timestamp");
+    addScan (sensor, ranges, laser_pose, robot_pose, stamp);
+  }
+
+  std::string name_;
+  CarmenReadOptions options_;
+  std::size_t line_number_ = 0;
+  std::optional<Rigid2d> pending_odom_;
+  std::vector<RawScan> scans_;
+};
+
+bool
+isGzipFile (const std::string& path)
+{
+  std::ifstream file (path, std::ios::binary);
+  unsigned char magic[2] = {0, 0};
+  file.read (reinterpret_cast<char*> (magic), 2);
+  return file.gcount () == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+}
+
+void
+checkOptions (const CarmenReadOptions& options, const std::string& name)
+{
+  if (!(options.min_range >= 0.0) || !(options.max_range > options.min_range))
+    throw LogError (name + ": the valid range interval [min_range, max_range] must satisfy 0 <= min < max");
+  if (!(options.field_of_view > 0.0) || !std::isfinite (options.angle_min))
+    throw LogError (name + ": the field of view must be positive and the start angle finite");
+}
+
+}  // namespace
+
+LaserLog
+readCarmenLog (std::istream& in, const std::string& name, const CarmenReadOptions& options)
+{
+  checkOptions (options, name);
+  CarmenParser parser (name, options);
+  std::string line;
+  std::size_t line_number = 0;
+  try {
+    while (std::getline (in, line))
+      if (!parser.parseLine (line, ++line_number))
+        break;
+  }
+  catch (const boost::iostreams::gzip_error& error) {
+    throw LogError (name + ":" + std::to_string (line_number + 1) + ": corrupt gzip data (" + error.what () + ")");
+  }
+  if (in.bad ())
+    throw LogError (name + ":" + std::to_string (line_number + 1) +
+                    ": read error (a truncated or corrupt gzip file?)");
+  return parser.finish ();
+}
+
+LaserLog
+readCarmenLog (const std::string& path, const CarmenReadOptions& options)
+{
+  std::ifstream file (path, std::ios::binary);
+  if (!file)
+    throw LogError (path + ": cannot open the CARMEN log (" + std::strerror (errno) + ")");
+  if (!isGzipFile (path))
+    return readCarmenLog (file, path, options);
+  boost::iostreams::filtering_istream in;
+  in.push (boost::iostreams::gzip_decompressor ());
+  in.push (file);
+  return readCarmenLog (in, path, options);
+}
+
+}  // namespace pcl_crf

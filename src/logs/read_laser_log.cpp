@@ -1,0 +1,28 @@
+#include <pcl_crf/logs/read_laser_log.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+namespace pcl_crf {
+
+LaserLogFormat
+detectLaserLogFormat (const std::string& path)
+{
+  std::ifstream file (path, std::ios::binary);
+  if (!file)
+    throw LogError (path + ": cannot open the log (" + std::strerror (errno) + ")");
+  char magic[13] = {};
+  file.read (magic, sizeof (magic));
+  return std::string (magic, static_cast<std::size_t> (file.gcount ())) == "#ROSBAG V2.0\n" ? LaserLogFormat::Rosbag
+                                                                                         : LaserLogFormat::Carmen;
+}
+
+LaserLog
+readLaserLog (const std::string& path, const LaserLogReadOptions& options)
+{
+  return detectLaserLogFormat (path) == LaserLogFormat::Rosbag ? readRosbagLog (path, options.rosbag)
+                                                               : readCarmenLog (path, options.carmen);
+}
+
+}  // namespace pcl_crf

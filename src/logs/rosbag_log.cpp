@@ -1,0 +1,320 @@
+#include <pcl_crf/logs/rosbag_log.h>
+
+// The ROS headers are only seen by this file; the CMake option PCL_CRF_WITH_ROSBAG
+// defines PCL_CRF_HAVE_ROSBAG and adds their include folders to it alone.
+#if defined(PCL_CRF_HAVE_ROSBAG) && PCL_CRF_HAVE_ROSBAG
+#include <geometry_msgs/PoseStamped.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/LaserScan.h>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace pcl_crf {
+
+#if defined(PCL_CRF_HAVE_ROSBAG) && PCL_CRF_HAVE_ROSBAG
+
+namespace {
+
+using StampedPoses = std::vector<std::pair<double, Rigid2d>>;
+
+double
+yawOf (const geometry_msgs::Quaternion& q)
+{
+  return std::atan2 (2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+void
+openBag (rosbag::Bag& bag, const std::string& path, rosbag::bagmode::BagMode mode)
+{
+  if (mode == rosbag::bagmode::Read && !std::filesystem::is_regular_file (path))
+    throw LogError (path + ": bag file not found");
+  try {
+    bag.open (path, mode);
+  }
+  catch (const rosbag::BagException& error) {
+    throw LogError (path + ": cannot open the ROS bag (" + error.what () + ")");
+  }
+}
+
+std::string
+describeTopics (const std::vector<std::pair<std::string, std::string>>& topics)
+{
+  std::string text;
+  for (const auto& topic : topics)
+    text += (text.empty () ? "" : ", ") + topic.first + " (" + topic.second + ")";
+  return text.empty () ? "none" : text;
+}
+
+void
+requireTopic (const std::string& path, const std::vector<std::pair<std::string, std::string>>& topics,
+              const std::string& topic, const std::string& type)
+{
+  for (const auto& entry : topics)
+    if (entry.first == topic) {
+      if (entry.second != type)
+        throw LogError (path + ": topic " + topic + " holds " + entry.second + ", not " + type);
+      return;
+    }
+  throw LogError (path + ": no topic " + topic + " in the bag; it has: " + describeTopics (topics));
+}
+
+LaserScanRecord
+toRecord (const sensor_msgs::LaserScan& message)
+{
+  LaserScanRecord record;
+  record.stamp = message.header.stamp.toSec ();
+  const int n = static_cast<int> (message.ranges.size ());
+  const bool reversed = message.angle_increment < 0.0f;
+  record.sensor.beam_count = n;
+  record.sensor.angle_increment = std::abs (static_cast<double> (message.angle_increment));
+  record.sensor.angle_min =
+      reversed ? message.angle_min + (n - 1) * static_cast<double> (message.angle_increment) : message.angle_min;
+  record.sensor.range_max = message.range_max;
+  record.points.resize (2, n);
+  Eigen::Index kept = 0;
+  for (int b = 0; b < n; ++b) {
+    const double r = message.ranges[reversed ? n - 1 - b : b];
+    if (!std::isfinite (r) || r < message.range_min || r >= message.range_max)
+      continue;
+    const double angle = record.sensor.angle_min + b * record.sensor.angle_increment;
+    record.points.col (kept++) << r * std::cos (angle), r * std::sin (angle);
+    record.beams.push_back (b);
+  }
+  record.points.conservativeResize (2, kept);
+  return record;
+}
+
+PoseTrack
+toTrack (StampedPoses samples, double delay)
+{
+  std::stable_sort (samples.begin (), samples.end (),
+                    [] (const auto& a, const auto& b) { return a.first < b.first; });
+  PoseTrack track;
+  for (const auto& sample : samples)
+    track.append (sample.first - delay, sample.second);
+  return track;
+}
+
+void
+checkOptions (const std::string& path, const RosbagReadOptions& options)
+{
+  if (options.scan_topic.empty ())
+    throw LogError (path + ": no scan topic given");
+  if (!(options.max_pose_gap > 0.0) || !std::isfinite (options.pose_delay))
+    throw LogError (path + ": the pose gap must be positive and the pose delay finite");
+  if (!(options.object_half_extent.array () > 0.0).all ())
+    throw LogError (path + ": the object footprint must have a positive size");
+}
+
+}  // namespace
+
+bool
+rosbagSupported ()
+{
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>>
+listRosbagTopics (const std::string& path)
+{
+  rosbag::Bag bag;
+  openBag (bag, path, rosbag::bagmode::Read);
+  std::set<std::pair<std::string, std::string>> topics;
+  try {
+    rosbag::View view (bag);
+    for (const rosbag::ConnectionInfo* connection : view.getConnections ())
+      topics.emplace (connection->topic, connection->datatype);
+  }
+  catch (const rosbag::BagException& error) {
+    throw LogError (path + ": cannot read the ROS bag (" + error.what () + ")");
+  }
+  return {topics.begin (), topics.end ()};
+}
+
+LaserLog
+readRosbagLog (const std::string& path, const RosbagReadOptions& options)
+{
+  checkOptions (path, options);
+  const auto topics = listRosbagTopics (path);
+  requireTopic (path, topics, options.scan_topic, "sensor_msgs/LaserScan");
+  std::vector<std::string> pose_topics = options.object_topics;
+  if (!options.pose_topic.empty ())
+    pose_topics.insert (pose_topics.begin (), options.pose_topic);
+  for (const auto& topic : pose_topics)
+    requireTopic (path, topics, topic, "geometry_msgs/PoseStamped");
+
+  rosbag::Bag bag;
+  openBag (bag, path, rosbag::bagmode::Read);
+  LaserLog log;
+  log.path = path;
+  std::map<std::string, StampedPoses> samples;
+  std::vector<std::string> wanted = pose_topics;
+  wanted.push_back (options.scan_topic);
+  try {
+    rosbag::View view (bag, rosbag::TopicQuery (wanted));
+    for (const rosbag::MessageInstance& message : view) {
+      if (message.getTopic () == options.scan_topic) {
+        if (options.max_scans > 0 && log.scans.size () >= options.max_scans)
+          continue;
+        const auto scan = message.instantiate<sensor_msgs::LaserScan> ();
+        if (scan && !scan->ranges.empty ())
+          log.scans.push_back (toRecord (*scan));
+        continue;
+      }
+      const auto pose = message.instantiate<geometry_msgs::PoseStamped> ();
+      if (!pose)
+        continue;
+      const double stamp = pose->header.stamp.isZero () ? message.getTime ().toSec () : pose->header.stamp.toSec ();
+      samples[message.getTopic ()].emplace_back (
+          stamp, makeRigid2d (pose->pose.position.x, pose->pose.position.y, yawOf (pose->pose.orientation)));
+    }
+  }
+  catch (const rosbag::BagException& error) {
+    throw LogError (path + ": cannot read the ROS bag (" + error.what () + ")");
+  }
+  if (log.scans.empty ())
+    throw LogError (path + ": topic " + options.scan_topic + " holds no laser scan");
+  std::stable_sort (log.scans.begin (), log.scans.end (),
+                    [] (const LaserScanRecord& a, const LaserScanRecord& b) { return a.stamp < b.stamp; });
+
+  if (!options.pose_topic.empty ()) {
+    const PoseTrack ego = toTrack (samples[options.pose_topic], options.pose_delay);
+    for (auto& scan : log.scans) {
+      Rigid2d pose;
+      scan.has_pose = ego.interpolate (scan.stamp, pose, options.max_pose_gap);
+      scan.pose = scan.has_pose ? Rigid2d (pose * options.T_pose_laser) : Rigid2d::Identity ();
+      log.has_reference_poses = log.has_reference_poses || scan.has_pose;
+    }
+  }
+  for (const auto& topic : options.object_topics) {
+    TrackedObject object;
+    object.name = topic;
+    object.kind = options.object_kind;
+    object.half_extent = options.object_half_extent;
+    object.track = toTrack (samples[topic], options.pose_delay);
+    log.objects.push_back (std::move (object));
+  }
+  return log;
+}
+
+namespace {
+
+geometry_msgs::PoseStamped
+toPoseMessage (double stamp, const Rigid2d& pose, std::uint32_t seq)
+{
+  geometry_msgs::PoseStamped message;
+  message.header.seq = seq;
+  message.header.stamp.fromSec (stamp);
+  message.header.frame_id = "map";
+  message.pose.position.x = pose.translation ().x ();
+  message.pose.position.y = pose.translation ().y ();
+  const double theta = rotationAngle (pose);
+  message.pose.orientation.z = std::sin (theta / 2.0);
+  message.pose.orientation.w = std::cos (theta / 2.0);
+  return message;
+}
+
+sensor_msgs::LaserScan
+toScanMessage (const LaserScanRecord& record, std::uint32_t seq)
+{
+  sensor_msgs::LaserScan message;
+  message.header.seq = seq;
+  message.header.stamp.fromSec (record.stamp);
+  message.header.frame_id = "laser";
+  message.angle_min = static_cast<float> (record.sensor.angle_min);
+  message.angle_max = static_cast<float> (record.sensor.angleMax ());
+  message.angle_increment = static_cast<float> (record.sensor.angle_increment);
+  message.range_min = 0.0f;
+  message.range_max = static_cast<float> (record.sensor.range_max);
+  message.ranges.assign (record.sensor.beam_count, std::numeric_limits<float>::infinity ());
+  for (std::size_t i = 0; i < record.beams.size (); ++i)
+    message.ranges.at (record.beams[i]) = static_cast<float> (record.points.col (i).norm ());
+  return message;
+}
+
+}  // namespace
+
+void
+writeRosbagLog (const std::string& path, const LaserLog& log, const RosbagReadOptions& options)
+{
+  checkOptions (path, options);
+  if (options.object_topics.size () < log.objects.size ())
+    throw LogError (path + ": give one object topic per tracked object (" + std::to_string (log.objects.size ()) +
+                    ")");
+  rosbag::Bag bag;
+  openBag (bag, path, rosbag::bagmode::Write);
+  try {
+    std::uint32_t seq = 0;
+    for (const auto& record : log.scans) {
+      if (record.beams.size () != static_cast<std::size_t> (record.points.cols ()))
+        throw LogError (path + ": a scan's beam indices do not match its points");
+      bag.write (options.scan_topic, ros::Time (record.stamp), toScanMessage (record, seq++));
+      if (!options.pose_topic.empty () && record.has_pose) {
+        const double stamp = record.stamp + options.pose_delay;
+        bag.write (options.pose_topic, ros::Time (stamp),
+                   toPoseMessage (stamp, record.pose * options.T_pose_laser.inverse (), seq));
+      }
+    }
+    for (std::size_t k = 0; k < log.objects.size (); ++k) {
+      const PoseTrack& track = log.objects[k].track;
+      for (std::size_t i = 0; i < track.stamps.size (); ++i) {
+        const double stamp = track.stamps[i] + options.pose_delay;
+        bag.write (options.object_topics[k], ros::Time (stamp),
+                   toPoseMessage (stamp, track.poses[i], static_cast<std::uint32_t> (i)));
+      }
+    }
+    bag.close ();
+  }
+  catch (const rosbag::BagException& error) {
+    throw LogError (path + ": cannot write the ROS bag (" + error.what () + ")");
+  }
+}
+
+#else  // built without ROS bag support
+
+namespace {
+
+[[noreturn]] void
+unsupported (const std::string& path)
+{
+  throw LogError (path + ": pcl_crf was built without ROS bag support (install Debian's librosbag-dev, "
+                         "libsensor-msgs-dev and libgeometry-msgs-dev, then re-run CMake with "
+                         "-DPCL_CRF_WITH_ROSBAG=AUTO or ON)");
+}
+
+}  // namespace
+
+bool
+rosbagSupported ()
+{
+  return false;
+}
+
+std::vector<std::pair<std::string, std::string>>
+listRosbagTopics (const std::string& path)
+{
+  unsupported (path);
+}
+
+LaserLog
+readRosbagLog (const std::string& path, const RosbagReadOptions&)
+{
+  unsupported (path);
+}
+
+void
+writeRosbagLog (const std::string& path, const LaserLog&, const RosbagReadOptions&)
+{
+  unsupported (path);
+}
+
+#endif
+
+}  // namespace pcl_crf

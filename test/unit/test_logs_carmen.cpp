@@ -1,0 +1,289 @@
+#include <pcl_crf/logs/carmen_log.h>
+#include <pcl_crf/logs/read_laser_log.h>
+
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using pcl_crf::makeRigid2d;
+using pcl_crf::Rigid2d;
+
+namespace {
+
+/** Range from (x, y) along angle a to the walls of the room [-4, 8] x [-3, 5]. */
+double
+rayToRoom (double x, double y, double a)
+{
+  const double dx = std::cos (a), dy = std::sin (a);
+  double t = 1e9;
+  for (double wall_x : {-4.0, 8.0})
+    if (std::abs (dx) > 1e-12 && (wall_x - x) / dx > 0)
+      t = std::min (t, (wall_x - x) / dx);
+  for (double wall_y : {-3.0, 5.0})
+    if (std::abs (dy) > 1e-12 && (wall_y - y) / dy > 0)
+      t = std::min (t, (wall_y - y) / dy);
+  return t;
+}
+
+/** Corrected pose of scan j. */
+Rigid2d
+truePose (int j)
+{
+  return makeRigid2d (0.5 * j, 0.1 * j, 0.05 * j);
+}
+
+/** The error the log's raw odometry makes on step j-1 -> j. */
+Rigid2d
+odometryError (int j)
+{
+  return makeRigid2d (0.01 * j, -0.005, 0.002 * j);
+}
+
+std::string
+flaser (int j, int beams, bool corrected)
+{
+  const Rigid2d T = truePose (j);
+  const Eigen::Vector3d p = pcl_crf::toXYTheta (T);
+  std::ostringstream line;
+  line.precision (10);
+  line << "FLASER " << beams;
+  for (int i = 0; i < beams; ++i) {
+    const double a = -M_PI / 2 + i * M_PI / (beams - 1);
+    double r = rayToRoom (p.x (), p.y (), p.z () + a);
+    if (i == 0)
+      r = 81.9;  // no return
+    if (i == 5)
+      r = 0.0;  // below min range
+    if (i == 7)
+      r = 50.0;  // no return
+    line << ' ' << r;
+  }
+  // raw logs: the odometry fields drift away from the pose
+  const Eigen::Vector3d o = corrected ? p : Eigen::Vector3d (p + Eigen::Vector3d (0.3, -0.2, 0.1 * j));
+  line << ' ' << p.x () << ' ' << p.y () << ' ' << p.z () << ' ' << o.x () << ' ' << o.y () << ' ' << o.z ()
+       << ' ' << 100.0 + j << " testhost " << 100.0 + j;
+  return line.str ();
+}
+
+std::string
+odom (const Rigid2d& T, double stamp)
+{
+  const Eigen::Vector3d p = pcl_crf::toXYTheta (T);
+  std::ostringstream line;
+  line.precision (12);
+  line << "ODOM " << p.x () << ' ' << p.y () << ' ' << p.z () << " 0 0 0 " << stamp << " testhost " << stamp;
+  return line.str ();
+}
+
+/** A Radish-style corrected log: FLASER with the corrected pose as pose and
+ *  odometry, and an ODOM stream re-anchored at every scan. */
+std::string
+correctedLog (int scans, int beams = 181)
+{
+  std::ostringstream log;
+  log << "# CARMEN Logfile\nPARAM robot_frontlaser_offset 0.0 nohost 0\n";
+  for (int j = 0; j < scans; ++j) {
+    if (j > 0) {
+      const Rigid2d before = truePose (j - 1) * (truePose (j - 1).inverse () * truePose (j)) * odometryError (j);
+      log << odom (truePose (j - 1) * makeRigid2d (0.1, 0.0, 0.0), 99.5 + j) << "\n"  // an intermediate reading
+          << odom (before, 99.9 + j) << "\n";
+    }
+    log << flaser (j, beams, true) << "\n" << odom (truePose (j), 0.0) << "\nNEFF 15\n";
+  }
+  return log.str ();
+}
+
+class LogCarmen : public ::testing::Test
+{
+protected:
+  void
+  SetUp () override
+  {
+    dir_ = fs::temp_directory_path () / ("pcl_crf_logs_carmen_" + std::to_string (::getpid ()));
+    fs::create_directories (dir_);
+  }
+  void
+  TearDown () override
+  {
+    fs::remove_all (dir_);
+  }
+  std::string
+  write (const std::string& name, const std::string& text, bool gzip)
+  {
+    const std::string path = (dir_ / name).string ();
+    std::ofstream file (path, std::ios::binary);
+    if (!gzip) {
+      file << text;
+      return path;
+    }
+    boost::iostreams::filtering_ostream out;
+    out.push (boost::iostreams::gzip_compressor ());
+    out.push (file);
+    out << text;
+    return path;
+  }
+  fs::path dir_;
+};
+
+TEST_F (LogCarmen, ReadsScansInBeamOrderAndDropsNoReturns)
+{
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("room.log", correctedLog (4), false));
+  ASSERT_EQ (log.scans.size (), 4u);
+  EXPECT_TRUE (log.has_reference_poses);
+  EXPECT_TRUE (log.has_odometry);
+  const pcl_crf::LaserScanRecord& scan = log.scans[2];
+  EXPECT_EQ (scan.sensor.beam_count, 181);
+  EXPECT_NEAR (scan.sensor.angle_min, -M_PI / 2, 1e-12);
+  EXPECT_NEAR (scan.sensor.angle_increment, M_PI / 180, 1e-12);
+  EXPECT_DOUBLE_EQ (scan.stamp, 102.0);
+  ASSERT_EQ (scan.points.cols (), 181 - 3);  // beams 0, 5, 7 carry no return
+  ASSERT_EQ (scan.beams.size (), 178u);
+  EXPECT_EQ (scan.beams[0], 1);
+  EXPECT_EQ (scan.beams[4], 6);
+  EXPECT_EQ (scan.beams[5], 8);
+  EXPECT_TRUE (std::is_sorted (scan.beams.begin (), scan.beams.end ()));
+  // every point lies on a wall of the room once mapped with the corrected pose
+  for (Eigen::Index i = 0; i < scan.points.cols (); ++i) {
+    const Eigen::Vector2d w = scan.pose * scan.points.col (i);
+    const double to_wall = std::min ({std::abs (w.x () + 4), std::abs (w.x () - 8), std::abs (w.y () + 3),
+                                      std::abs (w.y () - 5)});
+    EXPECT_LT (to_wall, 1e-6) << "point " << i;
+  }
+  EXPECT_TRUE (scan.has_pose);
+  EXPECT_TRUE (scan.pose.isApprox (truePose (2), 1e-9));
+}
+
+TEST_F (LogCarmen, CorrectedLogTakesOdometryFromTheReanchoredOdomStream)
+{
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("room.log", correctedLog (4), false));
+  EXPECT_FALSE (log.scans[0].has_odometry_step);
+  for (int j = 1; j < 4; ++j) {
+    ASSERT_TRUE (log.scans[j].has_odometry_step);
+    const Rigid2d expected = truePose (j - 1).inverse () * truePose (j) * odometryError (j);
+    EXPECT_TRUE (log.scans[j].odometry_step.isApprox (expected, 1e-8)) << "scan " << j;
+  }
+}
+
+TEST_F (LogCarmen, RawLogTakesOdometryFromTheLaserRecords)
+{
+  std::string text;
+  for (int j = 0; j < 3; ++j)
+    text += flaser (j, 91, false) + "\n";
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("raw.log", text, false));
+  EXPECT_FALSE (log.has_reference_poses);
+  EXPECT_FALSE (log.scans[1].has_pose);
+  ASSERT_TRUE (log.scans[2].has_odometry_step);
+  // odometry fields of scan j: truePose (j) shifted by (0.3, -0.2) and rotated by 0.1 j more
+  const auto fields = [] (int j) {
+    const Eigen::Vector3d p = pcl_crf::toXYTheta (truePose (j));
+    return makeRigid2d (p.x () + 0.3, p.y () - 0.2, p.z () + 0.1 * j);
+  };
+  EXPECT_TRUE (log.scans[2].odometry_step.isApprox (fields (1).inverse () * fields (2), 1e-8));
+}
+
+TEST_F (LogCarmen, ReadsGzipLikePlainText)
+{
+  const std::string text = correctedLog (3);
+  const pcl_crf::LaserLog plain = pcl_crf::readCarmenLog (write ("a.log", text, false));
+  const pcl_crf::LaserLog packed = pcl_crf::readCarmenLog (write ("a.log.gz", text, true));
+  ASSERT_EQ (plain.scans.size (), packed.scans.size ());
+  for (std::size_t k = 0; k < plain.scans.size (); ++k) {
+    EXPECT_TRUE (plain.scans[k].points.isApprox (packed.scans[k].points));
+    EXPECT_TRUE (plain.scans[k].odometry_step.isApprox (packed.scans[k].odometry_step));
+  }
+  EXPECT_EQ (pcl_crf::detectLaserLogFormat ((dir_ / "a.log.gz").string ()), pcl_crf::LaserLogFormat::Carmen);
+  EXPECT_EQ (pcl_crf::readLaserLog ((dir_ / "a.log.gz").string ()).scans.size (), 3u);
+}
+
+TEST_F (LogCarmen, HonoursRangeLimitsAndMaxScans)
+{
+  pcl_crf::CarmenReadOptions options;
+  options.max_range = 5.0;
+  options.max_scans = 2;
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("room.log", correctedLog (4), false), options);
+  ASSERT_EQ (log.scans.size (), 2u);
+  for (const auto& scan : log.scans)
+    for (Eigen::Index i = 0; i < scan.points.cols (); ++i)
+      EXPECT_LE (scan.points.col (i).norm (), 5.0 + 1e-9);
+  EXPECT_LT (log.scans[0].points.cols (), 178);
+}
+
+TEST_F (LogCarmen, ReadsRobotLaser1)
+{
+  // ROBOTLASER1 type start fov res max acc remission n r.. m e.. laser_pose robot_pose tv rv fs ss ta ts host lts
+  std::string text;
+  for (int j = 0; j < 2; ++j) {
+    std::ostringstream line;
+    line << "ROBOTLASER1 0 -1.0 2.0 0.5 20 0.01 0 5 1 2 3 4 99 2 7 7 " << j << " 0 0 " << j + 0.5
+         << " 0.1 0 0 0 0 0 0 " << 10 + j << " host " << 10 + j;
+    text += line.str () + "\n";
+  }
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("robot.log", text, false));
+  ASSERT_EQ (log.scans.size (), 2u);
+  const auto& scan = log.scans[1];
+  EXPECT_EQ (scan.sensor.beam_count, 5);
+  EXPECT_DOUBLE_EQ (scan.sensor.angle_min, -1.0);
+  EXPECT_DOUBLE_EQ (scan.sensor.angle_increment, 0.5);
+  EXPECT_DOUBLE_EQ (scan.sensor.range_max, 20.0);
+  ASSERT_EQ (scan.points.cols (), 4);  // 99 > 20 m is no return
+  EXPECT_NEAR (scan.points (0, 0), std::cos (-1.0), 1e-12);
+  EXPECT_NEAR (scan.points (1, 3), 4 * std::sin (0.5), 1e-12);
+  EXPECT_DOUBLE_EQ (scan.stamp, 11.0);
+  // robot poses (j + 0.5, 0.1, 0) differ from the laser poses (j, 0, 0): a raw log,
+  // odometry from the robot poses
+  EXPECT_FALSE (log.has_reference_poses);
+  EXPECT_TRUE (scan.odometry_step.isApprox (makeRigid2d (1.0, 0.0, 0.0), 1e-12));
+}
+
+TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
+{
+  try {
+    pcl_crf::readCarmenLog ((dir_ / "missing.log").string ());
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("missing.log: cannot open"), std::string::npos) << error.what ();
+  }
+  const std::string broken = write ("broken.log", correctedLog (1) + "FLASER 4 1 2 x 4 0 0 0 0 0 0 1 h 1\n", false);
+  try {
+    pcl_crf::readCarmenLog (broken);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("broken.log:6: FLASER record: a range reading"), std::string::npos)
+        << error.what ();
+  }
+  const std::string truncated = write ("cut.log", "FLASER 3 1 2 3 0 0\n", false);
+  EXPECT_THROW (pcl_crf::readCarmenLog (truncated), pcl_crf::LogError);
+  const std::string empty = write ("empty.log", "PARAM a b\nODOM 0 0 0 0 0 0 1 h 1\n", false);
+  try {
+    pcl_crf::readCarmenLog (empty);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("no FLASER or ROBOTLASER1 record"), std::string::npos);
+  }
+  const std::string not_gzip = write ("bad.log.gz", "\x1f\x8b garbage that is not deflate data", false);
+  EXPECT_THROW (pcl_crf::readCarmenLog (not_gzip), pcl_crf::LogError);
+  const std::string whole = write ("whole.log.gz", correctedLog (20), true);
+  fs::resize_file (whole, fs::file_size (whole) / 2);  // a cut download
+  try {
+    pcl_crf::readCarmenLog (whole);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("truncated or corrupt gzip"), std::string::npos) << error.what ();
+  }
+  pcl_crf::CarmenReadOptions nonsense;
+  nonsense.max_range = -1.0;
+  EXPECT_THROW (pcl_crf::readCarmenLog (write ("ok.log", correctedLog (2), false), nonsense), pcl_crf::LogError);
+}
+
+}  // namespace

@@ -1,0 +1,182 @@
+#include <pcl_crf/logs/log_pairs.h>
+#include <pcl_crf/logs/read_laser_log.h>
+#include <pcl_crf/logs/rosbag_log.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using pcl_crf::makeRigid2d;
+using pcl_crf::Rigid2d;
+
+namespace {
+
+#define PCL_CRF_SKIP_WITHOUT_ROSBAG()                                                    \
+  if (!pcl_crf::rosbagSupported ())                                                      \
+  GTEST_SKIP () << "built without ROS bag support (PCL_CRF_WITH_ROSBAG, librosbag-dev)"
+
+class LogRosbag : public ::testing::Test
+{
+protected:
+  void
+  SetUp () override
+  {
+    dir_ = fs::temp_directory_path () / ("pcl_crf_logs_rosbag_" + std::to_string (::getpid ()));
+    fs::create_directories (dir_);
+  }
+  void
+  TearDown () override
+  {
+    fs::remove_all (dir_);
+  }
+
+  /** Four scans of 8 beams (beam 2 without return) from a sensor driving +x,
+   *  with an object track. */
+  static pcl_crf::LaserLog
+  smallLog ()
+  {
+    pcl_crf::LaserLog log;
+    for (int k = 0; k < 4; ++k) {
+      pcl_crf::LaserScanRecord scan;
+      scan.stamp = 1000.0 + 0.1 * k;
+      scan.sensor = {8, -M_PI / 2, M_PI / 7, 10.0};
+      for (int b = 0; b < 8; ++b) {
+        if (b == 2)
+          continue;
+        const double angle = scan.sensor.angle_min + b * scan.sensor.angle_increment, r = 1.0 + 0.25 * b + 0.01 * k;
+        scan.points.conservativeResize (2, scan.points.cols () + 1);
+        scan.points.col (scan.points.cols () - 1) << r * std::cos (angle), r * std::sin (angle);
+        scan.beams.push_back (b);
+      }
+      scan.has_pose = true;
+      scan.pose = makeRigid2d (0.2 * k, 0.0, 0.05 * k);
+      log.scans.push_back (scan);
+    }
+    pcl_crf::TrackedObject car;
+    for (int k = 0; k < 40; ++k)
+      car.track.append (999.9 + 0.01 * k, makeRigid2d (3.0 + 0.01 * k, 1.0, 0.5));
+    log.objects.push_back (car);
+    return log;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F (LogRosbag, WrittenBagReadsBack)
+{
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  pcl_crf::RosbagReadOptions options;
+  options.pose_topic = "/ego_pose";
+  options.object_topics = {"/car_pose"};
+  options.T_pose_laser = makeRigid2d (-0.1, 0.02, 0.0);
+  options.pose_delay = 0.025;
+  const std::string path = (dir_ / "small.bag").string ();
+  const pcl_crf::LaserLog written = smallLog ();
+  pcl_crf::writeRosbagLog (path, written, options);
+
+  const auto topics = pcl_crf::listRosbagTopics (path);
+  ASSERT_EQ (topics.size (), 3u);
+  EXPECT_EQ (topics[0], std::make_pair (std::string ("/car_pose"), std::string ("geometry_msgs/PoseStamped")));
+  EXPECT_EQ (topics[2], std::make_pair (std::string ("/scan"), std::string ("sensor_msgs/LaserScan")));
+  EXPECT_EQ (pcl_crf::detectLaserLogFormat (path), pcl_crf::LaserLogFormat::Rosbag);
+
+  pcl_crf::LaserLogReadOptions read;
+  read.rosbag = options;
+  const pcl_crf::LaserLog log = pcl_crf::readLaserLog (path, read);
+  ASSERT_EQ (log.scans.size (), 4u);
+  EXPECT_TRUE (log.has_reference_poses);
+  EXPECT_FALSE (log.has_odometry);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& scan = log.scans[k];
+    EXPECT_NEAR (scan.stamp, written.scans[k].stamp, 1e-6);
+    EXPECT_EQ (scan.sensor.beam_count, 8);
+    EXPECT_NEAR (scan.sensor.angle_increment, M_PI / 7, 1e-6);
+    EXPECT_EQ (scan.beams, written.scans[k].beams);
+    EXPECT_TRUE (scan.points.isApprox (written.scans[k].points, 1e-5));
+    ASSERT_TRUE (scan.has_pose);
+    EXPECT_TRUE (scan.pose.isApprox (written.scans[k].pose, 1e-6)) << "scan " << k;
+  }
+  ASSERT_EQ (log.objects.size (), 1u);
+  EXPECT_EQ (log.objects[0].name, "/car_pose");
+  EXPECT_EQ (log.objects[0].track.stamps.size (), 40u);
+  EXPECT_NEAR (log.objects[0].track.stamps.front (), 999.9, 1e-6);
+  // pairs: the reference ego motion and the object motion (+0.1 m in x over 0.1 s)
+  const pcl_crf::ScanPair pair = pcl_crf::makeLogPair (log, 1);
+  Rigid2d ego;
+  ASSERT_TRUE (pcl_crf::referenceEgoMotion (pair, ego));
+  EXPECT_TRUE (ego.isApprox (written.scans[1].pose.inverse () * written.scans[2].pose, 1e-5));
+  ASSERT_EQ (pair.objects.size (), 2u);
+}
+
+TEST_F (LogRosbag, WithoutPoseTopicScansHaveNoReference)
+{
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  const std::string path = (dir_ / "scans_only.bag").string ();
+  pcl_crf::LaserLog written = smallLog ();
+  written.objects.clear ();
+  pcl_crf::writeRosbagLog (path, written);
+  const pcl_crf::LaserLog log = pcl_crf::readRosbagLog (path);
+  for (const auto& scan : log.scans) {
+    EXPECT_TRUE (std::is_sorted (scan.beams.begin (), scan.beams.end ()));
+    EXPECT_GT (scan.sensor.angle_increment, 0.0);
+    EXPECT_FALSE (scan.has_pose);
+  }
+  EXPECT_FALSE (log.has_reference_poses);
+}
+
+TEST_F (LogRosbag, ErrorsNameTheBagAndTopic)
+{
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  const std::string path = (dir_ / "small.bag").string ();
+  pcl_crf::LaserLog written = smallLog ();
+  EXPECT_THROW (pcl_crf::writeRosbagLog (path, written), pcl_crf::LogError);  // the object needs a topic
+  written.objects.clear ();
+  pcl_crf::writeRosbagLog (path, written);
+  pcl_crf::RosbagReadOptions options;
+  options.scan_topic = "/laser";
+  try {
+    pcl_crf::readRosbagLog (path, options);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("no topic /laser in the bag; it has: /scan (sensor_msgs/LaserScan)"),
+               std::string::npos)
+        << error.what ();
+  }
+  options.scan_topic = "/scan";
+  options.pose_topic = "/scan";
+  try {
+    pcl_crf::readRosbagLog (path, options);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("holds sensor_msgs/LaserScan, not geometry_msgs/PoseStamped"),
+               std::string::npos)
+        << error.what ();
+  }
+  EXPECT_THROW (pcl_crf::readRosbagLog ((dir_ / "missing.bag").string ()), pcl_crf::LogError);
+  const std::string garbage = (dir_ / "garbage.bag").string ();
+  std::ofstream (garbage) << "#ROSBAG V2.0\nthis is not a bag";
+  EXPECT_THROW (pcl_crf::readRosbagLog (garbage), pcl_crf::LogError);
+}
+
+TEST_F (LogRosbag, WithoutSupportEveryCallSaysHowToEnableIt)
+{
+  if (pcl_crf::rosbagSupported ())
+    GTEST_SKIP () << "built with ROS bag support";
+  try {
+    pcl_crf::readRosbagLog ((dir_ / "any.bag").string ());
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("built without ROS bag support"), std::string::npos);
+  }
+  EXPECT_THROW (pcl_crf::listRosbagTopics ("x.bag"), pcl_crf::LogError);
+  EXPECT_THROW (pcl_crf::writeRosbagLog ("x.bag", {}), pcl_crf::LogError);
+}
+
+}  // namespace

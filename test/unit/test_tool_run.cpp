@@ -1,0 +1,189 @@
+// pcl_crf_run: usage, errors and a run over a tiny CARMEN log the test writes.
+
+#include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/evaluation/prediction_io.h>
+#include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/logs/carmen_log.h>
+#include <pcl_crf/logs/rosbag_log.h>
+
+#include "app_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using pcl_crf::test::runTool;
+
+namespace {
+
+/** A corrected CARMEN log: a robot drives +x in the room [-4, 8] x [-3, 5]
+ *  (361 beams), the ODOM stream re-anchored at every scan. */
+std::string
+roomLog (int scans)
+{
+  std::ostringstream log;
+  log.precision (10);
+  for (int j = 0; j < scans; ++j) {
+    const double x = 0.3 * j, y = 0.05 * j, theta = 0.02 * j;
+    if (j > 0)  // last raw odometry before this scan: the true step plus 2 cm
+      log << "ODOM " << x + 0.02 << ' ' << y << ' ' << theta << " 0 0 0 " << j << " h " << j << "\n";
+    log << "FLASER 361";
+    for (int i = 0; i < 361; ++i) {
+      const double a = theta - M_PI / 2 + i * M_PI / 360, dx = std::cos (a), dy = std::sin (a);
+      double t = 1e9;
+      for (double wx : {-4.0, 8.0})
+        if (std::abs (dx) > 1e-12 && (wx - x) / dx > 0)
+          t = std::min (t, (wx - x) / dx);
+      for (double wy : {-3.0, 5.0})
+        if (std::abs (dy) > 1e-12 && (wy - y) / dy > 0)
+          t = std::min (t, (wy - y) / dy);
+      log << ' ' << (i % 50 == 3 ? 81.9 : t);
+    }
+    log << ' ' << x << ' ' << y << ' ' << theta << ' ' << x << ' ' << y << ' ' << theta << ' ' << j + 0.5
+        << " h " << j + 0.5 << "\n";
+    log << "ODOM " << x << ' ' << y << ' ' << theta << " 0 0 0 0 h 0\n";
+  }
+  return log.str ();
+}
+
+class ToolRun : public ::testing::Test
+{
+protected:
+  void
+  SetUp () override
+  {
+    dir_ = fs::temp_directory_path () / ("pcl_crf_tool_run_" + std::to_string (::getpid ()));
+    fs::create_directories (dir_);
+    std::ofstream (dir_ / "room.log") << roomLog (6);
+  }
+  void
+  TearDown () override
+  {
+    fs::remove_all (dir_);
+  }
+  std::string
+  log () const
+  {
+    return (dir_ / "room.log").string ();
+  }
+  fs::path dir_;
+};
+
+TEST_F (ToolRun, HelpListsOptionsWithDefaultsAndUnits)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const auto run = runTool ("pcl_crf_run", "-h");
+  EXPECT_EQ (run.exit_code, 0);
+  for (const char* text : {"Usage:", "--method NAME", "(default: icp)", "--step N", "--max-pairs N",
+                           "--scan-topic T", "(default: /scan)", "--pose-topic T", "[m]", "ROS1 bags",
+                           "ego_motion.csv columns", "Example:"})
+    EXPECT_NE (run.output.find (text), std::string::npos) << text << "\n" << run.output;
+  EXPECT_TRUE (run.output.find ("supported in this build") != std::string::npos ||
+               run.output.find ("NOT supported in this build") != std::string::npos);
+  EXPECT_EQ (runTool ("pcl_crf_run", "").exit_code, 1);
+}
+
+TEST_F (ToolRun, RunsIcpOverALogAndWritesPredictionsAndCsv)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const fs::path out = dir_ / "out";
+  const auto run = runTool ("pcl_crf_run", log () + " --method icp -o " + out.string () + " -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Ran icp on 5 pairs"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("pairs/s"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("odometry   translation error mean 0.0200 m"), std::string::npos) << run.output;
+  ASSERT_TRUE (fs::is_regular_file (out / "ego_motion.csv"));
+  std::ifstream csv (out / "ego_motion.csv");
+  std::string header, row;
+  std::getline (csv, header);
+  EXPECT_EQ (header.rfind ("pair,source_scan,target_scan,", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline (csv, row)) {
+    ++rows;
+    EXPECT_EQ (std::count (row.begin (), row.end (), ','), std::count (header.begin (), header.end (), ','));
+  }
+  EXPECT_EQ (rows, 5);
+  const pcl_crf::Prediction prediction = pcl_crf::loadPrediction ((out / "scan_000002").string ());
+  // the room is static and well structured: ICP finds the true step (0.3 m, 0.02 rad) closely
+  const Eigen::Vector3d ego = pcl_crf::toXYTheta (prediction.T_source_target);
+  EXPECT_NEAR (ego.z (), 0.02, 0.01);
+  EXPECT_NEAR (ego.head<2> ().norm (), std::hypot (0.3, 0.05), 0.05);
+}
+
+TEST_F (ToolRun, StepStartMaxPairsAndSavedPairs)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const fs::path pairs = dir_ / "pairs";
+  const auto run = runTool ("pcl_crf_run", log () + " --start 1 --step 2 --max-pairs 2 -q --save-pairs " +
+                                               pairs.string ());
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Ran icp on 2 pairs"), std::string::npos) << run.output;
+  const auto names = pcl_crf::listScanPairs (pairs.string ());
+  ASSERT_EQ (names.size (), 2u);
+  EXPECT_EQ (names[0], "scan_000001");
+  EXPECT_EQ (names[1], "scan_000003");
+  const pcl_crf::ScanPair pair = pcl_crf::loadScanPair ((pairs / "scan_000003").string ());
+  EXPECT_TRUE (pair.hasTruth ());
+  EXPECT_EQ (pair.sensor.beam_count, 361);
+}
+
+TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  if (!pcl_crf::rosbagSupported ())
+    GTEST_SKIP () << "built without ROS bag support";
+  // the room log's scans and corrected poses, as a bag with an ego pose topic
+  std::ifstream text (log ());
+  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
+  for (auto& scan : room.scans)
+    scan.stamp += 100.0;  // bags need positive times
+  pcl_crf::RosbagReadOptions topics;
+  topics.scan_topic = "/base_scan";
+  topics.pose_topic = "/mocap";
+  const std::string bag = (dir_ / "room.bag").string ();
+  pcl_crf::writeRosbagLog (bag, room, topics);
+  auto run = runTool ("pcl_crf_run", bag + " --scan-topic /base_scan --pose-topic /mocap -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Ran icp on 5 pairs"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("Ego motion vs the reference poses (5 pairs)"), std::string::npos) << run.output;
+  EXPECT_EQ (run.output.find ("odometry   translation"), std::string::npos) << run.output;  // bags: none
+  run = runTool ("pcl_crf_run", bag + " -q");
+  EXPECT_EQ (run.exit_code, 1);
+  EXPECT_NE (run.output.find ("no topic /scan in the bag; it has: /base_scan"), std::string::npos) << run.output;
+}
+
+TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const struct
+  {
+    std::string arguments, message;
+  } cases[] = {
+      {(dir_ / "missing.log").string (), "cannot open"},
+      {log () + " --method nonsense", "unknown method 'nonsense'"},
+      {log () + " --step 0", "--step needs a whole number >= 1"},
+      {log () + " --step abc", "--step needs a number, not 'abc'"},
+      {log () + " --max-pairs -2", "--max-pairs needs a whole number >= 0"},
+      {log () + " --start 99", "no scan pair"},
+      {log () + " --laser-offset 1,2", "--laser-offset needs 3 comma-separated numbers"},
+      {log () + " --min-range 5 --max-range 1", "0 <= min < max"},
+      {log () + " extra", "Expected one log file, got 2"},
+      {log () + " -o", "-o needs a value"},
+  };
+  for (const auto& c : cases) {
+    const auto run = runTool ("pcl_crf_run", c.arguments);
+    EXPECT_EQ (run.exit_code, 1) << c.arguments << "\n" << run.output;
+    EXPECT_NE (run.output.find (c.message), std::string::npos) << c.arguments << "\n" << run.output;
+  }
+  std::ofstream (dir_ / "broken.log") << "FLASER 3 1 x 3 0 0 0 0 0 0 1 h 1\n";
+  const auto run = runTool ("pcl_crf_run", (dir_ / "broken.log").string ());
+  EXPECT_EQ (run.exit_code, 1);
+  EXPECT_NE (run.output.find ("broken.log:1: FLASER record"), std::string::npos) << run.output;
+}
+
+}  // namespace
