@@ -1,4 +1,6 @@
 #include <pcl_crf/baselines/icp_baseline.h>
+#include <pcl_crf/evaluation/clustering_methods.h>
+#include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/evaluation/method.h>
 
 #include <functional>
@@ -32,6 +34,10 @@ registry ()
 {
   static const std::vector<std::pair<std::string, MethodFactory>> methods = {
       {"icp", [] (const MethodSettings&) { return std::make_unique<IcpMethod> (); }},
+      {"crf-matching", [] (const MethodSettings&) { return makeCrfMatchingMethod (); }},
+      {"kmeans", [] (const MethodSettings& settings) { return makeKMeansMethod (settings.cluster_count); }},
+      {"cbd", [] (const MethodSettings&) { return makeConsistencyMethod (); }},
+      {"crf-t", [] (const MethodSettings&) { return makeCrfClusteringTrueAssociationsMethod (); }},
   };
   return methods;
 }

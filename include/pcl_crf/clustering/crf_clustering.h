@@ -1,0 +1,109 @@
+#pragma once
+
+#include <pcl_crf/clustering/clustering_features.h>
+#include <pcl_crf/clustering/point_pairs.h>
+#include <pcl_crf/core/scan_pair.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace clustering {
+
+/** \brief Which per-point cluster probabilities the N_eff merge test (Eq. (8)) reads. */
+enum class MergeEvidence
+{
+  /** p(x_i = l) ∝ exp(local log-potential): how well each motion alone explains
+   *  pair i. Two copies of one motion share every point however the chain couples them. */
+  Local,
+  /** the chain's sum-product marginals (the paper's wording); on a strongly coupled
+   *  chain they follow whole segments, so near-copies of a motion fitted to different
+   *  segments look certain and survive. */
+  Marginals
+};
+
+/** \brief Settings of CRF-Clustering inference (Tipaldi & Ramos, IROS 2009, Sec. IV-D, IV-E). */
+struct CrfClusteringParameters
+{
+  // ---- initial over-segmentation (Sec. IV-D)
+  /** consecutive pairs whose source points are farther apart than this start a new
+   *  initial cluster [m]; default 0.5 m. */
+  double segment_break_distance = 0.5;
+  /** an initial cluster holds at most this many pairs (≤ 0: no cap) [pairs]; default 20. */
+  int max_segment_points = 20;
+
+  // ---- iterations
+  /** at most this many rounds of refit → features → belief propagation → merge;
+   *  ≥ 1, default 20 (the paper reports 3–7). */
+  int max_iterations = 20;
+  /** a cluster whose points' average N_eff (Eq. (8)) exceeds this is merged into the
+   *  others [clusters]; > 1, default 1.7 (paper). */
+  double max_average_neff = 1.7;
+  /** what N_eff is computed from; default MergeEvidence::Local. */
+  MergeEvidence merge_evidence = MergeEvidence::Local;
+  /** a cluster whose local log-potential at a node is more than this below the
+   *  node's best is not a state of that node (keeps inference near O(n)) [nats];
+   *  > 0, default 30 (its probability is below e⁻³⁰ before neighbours are counted). */
+  double pruning_margin = 30.0;
+  /** a node takes at most this many clusters, its best by local log-potential
+   *  (beam pruning; exact when no node has more plausible clusters) [clusters];
+   *  ≥ 1, default 5. */
+  int max_states = 5;
+
+  /** the feature definition (must match the weights' model). */
+  FeatureOptions features;
+};
+
+/** \brief Outcome of CRF-Clustering on one chain of point pairs. */
+struct CrfClusteringResult
+{
+  /** MAP cluster of every pair, clusters numbered by decreasing size. */
+  std::vector<int> labels;
+  /** S x n, column i = p(x_i = l) from sum-product (after the last merge). */
+  Eigen::MatrixXd marginals;
+  /** T_target_source of every cluster (Eq. (3) weighted by the marginals). */
+  std::vector<Rigid2d> motions;
+  /** pairs labelled with each cluster. */
+  std::vector<int> sizes;
+  /** the static world (nearest to the odometry, else the largest cluster), or −1. */
+  int static_cluster = -1;
+  /** clusters of the initial over-segmentation. */
+  int initial_clusters = 0;
+  /** rounds performed. */
+  int iterations = 0;
+  /** true when the MAP labelling stopped changing before max_iterations. */
+  bool converged = false;
+};
+
+/** \brief \throws std::invalid_argument naming the first invalid setting. */
+void
+validateParameters (const CrfClusteringParameters& parameters);
+
+/** \brief Clusters point pairs by their rigid motion with a chain CRF (Sec. IV).
+ *
+ *  Initialises one cluster per segment of the distance over-segmentation, then
+ *  repeats: motions fitted to the current weights (Eq. (3); first the segments, then
+ *  the marginals) → local and pairwise features (Eqs. (2), (4)–(6)) → exact
+ *  sum-product marginals and max-product MAP on the chain → removal of clusters left
+ *  without a MAP point and of ambiguous clusters (Eq. (8)), until the MAP labelling
+ *  and the set of clusters stop changing. The static cluster is the one nearest to
+ *  the odometry (Mahalanobis).
+ *
+ *  \code
+ *  pcl_crf::clustering::CrfClusteringParameters parameters;
+ *  const auto result = pcl_crf::clustering::clusterPointPairs (pairs, weights, parameters, &pair.odometry);
+ *  \endcode
+ *  \param[in] pairs the associated pairs in scan order
+ *  \param[in] weights [w_spacing_residual, w_beam_residual, w_neighbour, w_weighted_neighbour,
+ *             w_stiffness] (kWeightCount)
+ *  \param[in] parameters inference settings
+ *  \param[in] odometry the sensor motion, or null (the largest cluster is then static)
+ *  \throws std::invalid_argument for wrong or non-finite weights or invalid parameters.
+ */
+CrfClusteringResult
+clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights,
+                   const CrfClusteringParameters& parameters = {}, const Odometry* odometry = nullptr);
+
+}  // namespace clustering
+}  // namespace pcl_crf

@@ -1,0 +1,235 @@
+#pragma once
+
+#include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/crf_matcher.h>
+
+#include <pcl/console/print.h>
+
+#include <cmath>
+#include <exception>
+
+namespace pcl_crf {
+
+namespace detail {
+
+/** \brief The planar part of a 4x4 rigid transform (rotation about z, x/y translation). */
+template <typename Scalar> Rigid2d
+toRigid2d (const Eigen::Matrix<Scalar, 4, 4>& M)
+{
+  const double theta = std::atan2 (static_cast<double> (M (1, 0)), static_cast<double> (M (0, 0)));
+  return makeRigid2d (static_cast<double> (M (0, 3)), static_cast<double> (M (1, 3)), theta);
+}
+
+/** \brief A planar rigid motion as a 4x4 transform. */
+template <typename Scalar> Eigen::Matrix<Scalar, 4, 4>
+toMatrix4 (const Rigid2d& T)
+{
+  Eigen::Matrix<Scalar, 4, 4> M = Eigen::Matrix<Scalar, 4, 4>::Identity ();
+  M.template topLeftCorner<2, 2> () = T.linear ().cast<Scalar> ();
+  M.template block<2, 1> (0, 3) = T.translation ().cast<Scalar> ();
+  return M;
+}
+
+/** \brief true when the target preparation depends on the same settings. */
+inline bool
+sameTargetSettings (const matching::CandidateParameters& a, const matching::CandidateParameters& b)
+{
+  return a.shape_position_scale == b.shape_position_scale &&
+         a.segments.breakpoint_angle == b.segments.breakpoint_angle &&
+         a.segments.range_noise == b.segments.range_noise;
+}
+
+}  // namespace detail
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+CRFMatcher<PointSource, PointTarget, Scalar>::CRFMatcher ()
+{
+  corr_name_ = "CRFMatcher";
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::setModel (const matching::CrfMatchingModel& model)
+{
+  model_ = model;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> bool
+CRFMatcher<PointSource, PointTarget, Scalar>::loadModel (const std::string& path)
+{
+  try {
+    setModel (matching::loadModel (path));
+    return true;
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::loadModel] %s\n", getClassName ().c_str (), error.what ());
+    return false;
+  }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::setInitialGuess (const Matrix4& T_target_source)
+{
+  guess_ = matching::MotionGuess ();
+  guess_.T_target_source = detail::toRigid2d (T_target_source);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::setOdometry (const Odometry& odometry)
+{
+  guess_ = matching::MotionGuess::fromOdometry (odometry);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> typename CRFMatcher<PointSource, PointTarget, Scalar>::Matrix4
+CRFMatcher<PointSource, PointTarget, Scalar>::getInitialGuess () const
+{
+  return detail::toMatrix4<Scalar> (guess_.T_target_source);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> typename CRFMatcher<PointSource, PointTarget, Scalar>::Matrix4
+CRFMatcher<PointSource, PointTarget, Scalar>::getTransformation () const
+{
+  return detail::toMatrix4<Scalar> (result_.T_target_source);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::clearResults ()
+{
+  result_ = matching::MatchResult ();
+  result_.T_target_source = guess_.T_target_source;
+  outliers_.clear ();
+  candidates_.clear ();
+  marginals_.clear ();
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> bool
+CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
+{
+  const char* method = "determineCorrespondences";
+  if (!input_ || !target_) {
+    PCL_ERROR ("[pcl_crf::%s::%s] No input %s cloud given: call setInput%s first.\n", getClassName ().c_str (), method,
+               input_ ? "target" : "source", input_ ? "Target" : "Source");
+    return false;
+  }
+  if (!model_.isTrained ()) {
+    PCL_ERROR ("[pcl_crf::%s::%s] No trained model: call setModel or loadModel first.\n", getClassName ().c_str (),
+               method);
+    return false;
+  }
+  try {
+    matching::validateParameters (model_.parameters);
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::%s] %s\n", getClassName ().c_str (), method, error.what ());
+    return false;
+  }
+  if (!pcl::PCLBase<PointSource>::initCompute ())
+    return false;
+  // The valid source points in beam order (the indices, or the whole cloud).
+  source_xy_.resize (2, static_cast<Eigen::Index> (indices_->size ()));
+  source_index_.clear ();
+  for (const auto index : *indices_) {
+    const PointSource& p = (*input_)[index];
+    if (!std::isfinite (p.x) || !std::isfinite (p.y))
+      continue;
+    source_xy_.col (static_cast<Eigen::Index> (source_index_.size ())) << p.x, p.y;
+    source_index_.push_back (static_cast<int> (index));
+  }
+  source_xy_.conservativeResize (2, static_cast<Eigen::Index> (source_index_.size ()));
+  if (source_index_.empty ()) {
+    PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point.\n", getClassName ().c_str (), method);
+    return false;
+  }
+  if (target_cloud_updated_ || !target_prepared_ ||
+      !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters.candidates)) {
+    target_prepared_.reset ();
+    const Eigen::Matrix2Xd target_xy = toMatrix2X (*target_, &target_index_);
+    if (target_xy.cols () == 0) {
+      PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point.\n", getClassName ().c_str (), method);
+      return false;
+    }
+    target_prepared_ = std::make_shared<const matching::PreparedTarget> (
+        matching::prepareTarget (target_xy, model_.parameters.candidates));
+    target_prepared_parameters_ = model_.parameters.candidates;
+    target_cloud_updated_ = false;
+  }
+  return true;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> bool
+CRFMatcher<PointSource, PointTarget, Scalar>::computeMatches ()
+{
+  try {
+    result_ = matching::matchScans (source_xy_, *target_prepared_, guess_, model_);
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::determineCorrespondences] %s\n", getClassName ().c_str (), error.what ());
+    clearResults ();
+    return false;
+  }
+  candidates_.assign (input_->size (), pcl::Indices ());
+  marginals_.assign (input_->size (), Eigen::VectorXd ());
+  for (std::size_t k = 0; k < source_index_.size (); ++k) {
+    const int i = source_index_[k];
+    if (result_.matches[k] == kNoMatch)
+      outliers_.push_back (i);
+    pcl::Indices& states = candidates_[i];
+    for (int c = 0; c < result_.candidates.count (static_cast<int> (k)); ++c)
+      states.push_back (target_index_[result_.candidates.target (static_cast<int> (k), c)]);
+    marginals_[i] = result_.marginals[k];
+  }
+  return true;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::determineCorrespondences (pcl::Correspondences& correspondences,
+                                                                        double max_distance)
+{
+  correspondences.clear ();
+  clearResults ();
+  if (!initCompute () || !computeMatches ())
+    return;
+  const double max_squared = max_distance * max_distance;  // +inf for the default
+  const Eigen::Matrix2Xd& target_xy = target_prepared_->scan.points;
+  correspondences.reserve (source_index_.size ());
+  for (std::size_t k = 0; k < source_index_.size (); ++k) {
+    const int j = result_.matches[k];
+    if (j == kNoMatch)
+      continue;
+    const double squared = (guess_.T_target_source * source_xy_.col (k) - target_xy.col (j)).squaredNorm ();
+    if (squared <= max_squared)
+      correspondences.emplace_back (source_index_[k], target_index_[j], static_cast<float> (squared));
+  }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences (
+    pcl::Correspondences& correspondences, double max_distance)
+{
+  pcl::Correspondences forward;
+  determineCorrespondences (forward, max_distance);
+  correspondences.clear ();
+  if (forward.empty ())
+    return;
+  matching::MatchResult backward;
+  try {  // target → source with the inverse guess (no prior)
+    matching::MotionGuess inverse;
+    inverse.T_target_source = guess_.T_target_source.inverse ();
+    backward = matching::matchScans (target_prepared_->scan.points,
+                                     matching::prepareTarget (source_xy_, model_.parameters.candidates), inverse, model_);
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::determineReciprocalCorrespondences] %s\n", getClassName ().c_str (), error.what ());
+    return;
+  }
+  // Valid-point position of every cloud index, to compare both directions.
+  std::vector<int> source_position (input_->size (), -1), target_position (target_->size (), -1);
+  for (std::size_t k = 0; k < source_index_.size (); ++k)
+    source_position[source_index_[k]] = static_cast<int> (k);
+  for (std::size_t k = 0; k < target_index_.size (); ++k)
+    target_position[target_index_[k]] = static_cast<int> (k);
+  for (const pcl::Correspondence& c : forward)
+    if (backward.matches[target_position[c.index_match]] == source_position[c.index_query])
+      correspondences.push_back (c);
+}
+
+}  // namespace pcl_crf

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace matching {
+
+/** \brief A run [begin, end) of consecutive scan points between two breakpoints
+ *  (see segmentScan for an example). */
+struct ScanSegment
+{
+  int begin = 0;
+  int end = 0;
+
+  int
+  size () const { return end - begin; }
+};
+
+/** \brief Splits a scan in beam order at the breakpoints of the adaptive
+ *  breakpoint detector (Borges & Aldon, 2004): consecutive points p, q are on
+ *  different segments when ||q − p|| > r sin Δφ / sin(λ − Δφ) + 3σ, with r the
+ *  smaller range and Δφ their bearing difference (measured from the points, so
+ *  missing beams are handled).
+ *  \param[in] points 2 x N points in the scan's own sensor frame [m]
+ *  \param[in] breakpoint_angle λ, the worst incidence angle on one surface [rad]
+ *  \param[in] range_noise σ, the laser's range noise [m]
+ *
+ *  \code
+ *  const auto segments = pcl_crf::matching::segmentScan (pair.source, 0.1745, 0.01);
+ *  \endcode
+ */
+std::vector<ScanSegment>
+segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise);
+
+/** \brief Which ends of a segment are an object's ends rather than an occlusion
+ *  or the border of the scan: the point across the breakpoint lies farther from
+ *  the sensor (background behind the object's end).
+ *  \param[in] points the scan, in its own sensor frame [m]
+ */
+struct SegmentEnds
+{
+  bool start = false;
+  bool finish = false;
+};
+
+SegmentEnds
+objectEnds (const Eigen::Matrix2Xd& points, const ScanSegment& segment);
+
+/** \brief Unit normal of the scan's line at every point: perpendicular to the
+ *  chord between the points two places before and after it within its segment
+ *  (one-sided at the segment's ends); zero for single-point segments.
+ */
+Eigen::Matrix2Xd
+segmentNormals (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments);
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <pcl_crf/core/knn_index.h>
+#include <pcl_crf/matching/scan_segments.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace matching {
+
+/** \brief Settings of the segment motion hypotheses, the candidate source that
+ *  finds the matches of moving objects (cars move metres between scans, so
+ *  neither the guess neighbours nor local shape reach their true matches).
+ */
+struct SegmentMotionParameters
+{
+  /** candidates per source point under its segment's motion hypothesis [count]
+   *  (0 disables the hypotheses); default 2. */
+  int neighbours = 2;
+  /** worst incidence angle λ of the adaptive breakpoint detector (Borges & Aldon,
+   *  2004): consecutive points farther apart than r sin Δφ / sin(λ − Δφ) + 3σ are
+   *  on different segments [rad]; default 10° = 0.1745. */
+  double breakpoint_angle = 0.17453292519943295;
+  /** range noise σ of the laser [m]; default 0.01. */
+  double range_noise = 0.01;
+  /** fewest points of a segment that gets hypotheses [count]; default 3. */
+  int min_segment_points = 3;
+  /** largest displacement of an object between the scans beyond the static
+   *  motion, about top speed × scan interval [m]; default 6. */
+  double max_displacement = 6.0;
+  /** a moved source point is explained when a target point lies this close [m];
+   *  default 0.15 (about two beam spacings at 10 m). */
+  double overlap_radius = 0.15;
+};
+
+/** \brief Per source point: its segment's motion hypothesis and how well it and
+ *  the current motion explain the segment.
+ *
+ *  \code
+ *  const pcl_crf::matching::SegmentMotions motions = pcl_crf::matching::segmentMotionHypotheses (
+ *      source, T_current * source, target, target_segments, target_index, {});
+ *  if (motions.has_hypothesis[i])
+ *    const Eigen::Vector2d predicted = T_current * source.col (i) + motions.translation.col (i);
+ *  \endcode
+ */
+struct SegmentMotions
+{
+  /** the hypothesis, a translation beyond the current motion [m] (0 when none). */
+  Eigen::Matrix2Xd translation;
+  /** whether the point's segment has a hypothesis. */
+  std::vector<bool> has_hypothesis;
+  /** fraction of the segment's scoring samples explained by the current motion
+   *  (1 for segments too short to score). */
+  Eigen::VectorXd current_support;
+  /** same for the hypothesis (= current_support without one). */
+  Eigen::VectorXd hypothesis_support;
+};
+
+/** \brief The translation hypothesis (target frame) of every source point's
+ *  segment, beyond the current motion.
+ *
+ *  For every source segment (≥ min_segment_points) the hypotheses align one of its
+ *  end points with the same end of a target segment within max_displacement
+ *  (Borges & Aldon's segments, matched by their ends); each is scored by the
+ *  fraction of (up to 10 evenly spread) segment points with a target point within
+ *  overlap_radius, and the best one is kept when it explains more than the
+ *  current motion does. All scores come from one batched kNN query.
+ *
+ *  \param[in] source_scan source points in the source frame (for the breakpoints) [m]
+ *  \param[in] source_current the same points moved by the current motion estimate [m]
+ *  \param[in] target_scan target points [m]
+ *  \param[in] target_segments segmentScan of the target
+ *  \param[in] target_index kNN index over the target points
+ *  \param[in] parameters the settings
+ */
+SegmentMotions
+segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matrix2Xd& source_current,
+                         const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
+                         const KnnIndex& target_index, const SegmentMotionParameters& parameters);
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,153 @@
+#include <pcl_crf/clustering/clustering_model.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace pcl_crf {
+namespace clustering {
+
+namespace {
+
+constexpr const char* kMagic = "pcl_crf_crf_clustering_model";
+
+[[noreturn]] void
+fail (const std::string& where, int line, const std::string& what)
+{
+  throw std::runtime_error ("[pcl_crf::clustering::readModel] " + where +
+                            (line > 0 ? ":" + std::to_string (line) : std::string ()) + ": " + what);
+}
+
+std::string
+exact (double value)
+{
+  char buffer[32];
+  std::snprintf (buffer, sizeof (buffer), "%.17g", value);
+  return buffer;
+}
+
+/** Every key of the file, in order: the weight names then the feature settings. */
+std::vector<std::string>
+modelKeys ()
+{
+  std::vector<std::string> keys (weightNames ().begin (), weightNames ().end ());
+  keys.push_back ("min_neighbour_distance");
+  keys.push_back ("min_spacing");
+  return keys;
+}
+
+/** Parses "key value" into the map, rejecting unknown, repeated and malformed entries. */
+void
+parseEntry (const std::string& text, int line, const std::string& where, std::map<std::string, double>& values)
+{
+  std::istringstream words (text);
+  std::string key, number, extra;
+  words >> key >> number;
+  const std::vector<std::string> keys = modelKeys ();
+  if (std::find (keys.begin (), keys.end (), key) == keys.end ())
+    fail (where, line, "unknown key '" + key + "'");
+  if (values.count (key))
+    fail (where, line, "key '" + key + "' appears twice");
+  char* end = nullptr;
+  const double value = std::strtod (number.c_str (), &end);
+  if (number.empty () || *end != '\0' || (words >> extra))
+    fail (where, line, "'" + key + "' needs exactly one number");
+  if (!std::isfinite (value))
+    fail (where, line, "'" + key + "' is not a finite number");
+  values[key] = value;
+}
+
+void
+checkHeader (const std::string& text, const std::string& where)
+{
+  std::istringstream words (text);
+  std::string magic;
+  int version = 0;
+  words >> magic >> version;
+  if (magic != kMagic)
+    fail (where, 1, "not a CRF-Clustering model (expected first line '" + std::string (kMagic) + " " +
+                        std::to_string (kModelVersion) + "')");
+  if (version != kModelVersion)
+    fail (where, 1, "model version " + std::to_string (version) + " is not supported (this build reads " +
+                        std::to_string (kModelVersion) + ")");
+}
+
+}  // namespace
+
+void
+writeModel (std::ostream& os, const CrfClusteringModel& model)
+{
+  os << kMagic << ' ' << kModelVersion << '\n'
+     << "# CRF-Clustering (Tipaldi & Ramos, IROS 2009) weights, maximum pseudo-likelihood\n";
+  if (model.prior_sigma > 0.0)
+    os << "# learned with a Gaussian prior of sigma " << exact (model.prior_sigma) << '\n';
+  for (int k = 0; k < kWeightCount; ++k)
+    os << weightNames ()[k] << ' ' << exact (model.weights (k)) << '\n';
+  os << "min_neighbour_distance " << exact (model.features.min_neighbour_distance) << '\n'
+     << "min_spacing " << exact (model.features.min_spacing) << '\n';
+}
+
+CrfClusteringModel
+readModel (std::istream& is, const std::string& where)
+{
+  std::string text;
+  int line = 0;
+  bool have_header = false;
+  std::map<std::string, double> values;
+  while (std::getline (is, text))
+  {
+    ++line;
+    const auto first = text.find_first_not_of (" \t\r");
+    if (first == std::string::npos || text[first] == '#')
+      continue;
+    if (!have_header)
+    {
+      checkHeader (text, where);
+      have_header = true;
+      continue;
+    }
+    parseEntry (text, line, where, values);
+  }
+  if (!have_header)
+    fail (where, 0, "empty file");
+  for (const std::string& key : modelKeys ())
+    if (!values.count (key))
+      fail (where, 0, "missing key '" + key + "'");
+  CrfClusteringModel model;
+  for (int k = 0; k < kWeightCount; ++k)
+    model.weights (k) = values[weightNames ()[k]];
+  model.features.min_neighbour_distance = values["min_neighbour_distance"];
+  model.features.min_spacing = values["min_spacing"];
+  if (!(model.features.min_neighbour_distance > 0.0) || !(model.features.min_spacing > 0.0))
+    fail (where, 0, "min_neighbour_distance and min_spacing must be > 0 [m]");
+  return model;
+}
+
+void
+saveModel (const CrfClusteringModel& model, const std::string& path)
+{
+  std::ofstream file (path);
+  if (!file)
+    throw std::runtime_error ("[pcl_crf::clustering::saveModel] cannot write '" + path + "'");
+  writeModel (file, model);
+  if (!file)
+    throw std::runtime_error ("[pcl_crf::clustering::saveModel] writing '" + path + "' failed");
+}
+
+CrfClusteringModel
+loadModel (const std::string& path)
+{
+  std::ifstream file (path);
+  if (!file)
+    throw std::runtime_error ("[pcl_crf::clustering::loadModel] cannot open '" + path + "'");
+  return readModel (file, path);
+}
+
+}  // namespace clustering
+}  // namespace pcl_crf

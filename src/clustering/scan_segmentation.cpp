@@ -1,0 +1,101 @@
+#include <pcl_crf/clustering/scan_segmentation.h>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pcl_crf {
+namespace clustering {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity ();
+
+void
+requirePositive (double break_distance, const char* method)
+{
+  if (!(break_distance > 0.0))
+    throw std::invalid_argument (std::string ("[pcl_crf::clustering::") + method +
+                                 "] break_distance must be > 0 [m]");
+}
+
+/** For every point, the index of the closest point before it (step −1) or after
+ *  it (step +1) in its segment that holds a label, or −1. One pass, O(N). */
+std::vector<Eigen::Index>
+closestLabelled (const std::vector<int>& segment, const std::vector<bool>& has_label, int step)
+{
+  const auto n = static_cast<Eigen::Index> (segment.size ());
+  std::vector<Eigen::Index> closest (segment.size (), -1);
+  Eigen::Index last = -1;
+  for (Eigen::Index k = 0; k < n; ++k)
+  {
+    const Eigen::Index i = step > 0 ? n - 1 - k : k;
+    if (last >= 0 && segment[last] != segment[i])
+      last = -1;
+    closest[i] = last;
+    if (has_label[i])
+      last = i;
+  }
+  return closest;
+}
+
+}  // namespace
+
+std::vector<int>
+segmentByDistance (const Eigen::Matrix2Xd& points, double break_distance, int max_segment_points)
+{
+  requirePositive (break_distance, "segmentByDistance");
+  std::vector<int> segment (static_cast<std::size_t> (points.cols ()), 0);
+  const double break_squared = break_distance * break_distance;
+  int current = 0, length = 0;
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+  {
+    const bool gap = i > 0 && (points.col (i) - points.col (i - 1)).squaredNorm () > break_squared;
+    const bool full = max_segment_points > 0 && length >= max_segment_points;
+    if (i > 0 && (gap || full))
+    {
+      ++current;
+      length = 0;
+    }
+    segment[i] = current;
+    ++length;
+  }
+  return segment;
+}
+
+std::vector<int>
+completeLabels (const Eigen::Matrix2Xd& scan, const std::vector<int>& labelled_index,
+                const std::vector<int>& labels, double break_distance, int default_label)
+{
+  requirePositive (break_distance, "completeLabels");
+  if (labelled_index.size () != labels.size ())
+    throw std::invalid_argument ("[pcl_crf::clustering::completeLabels] " + std::to_string (labels.size ()) +
+                                 " labels for " + std::to_string (labelled_index.size ()) + " labelled points");
+  std::vector<int> result (static_cast<std::size_t> (scan.cols ()), default_label);
+  std::vector<bool> has_label (result.size (), false);
+  for (std::size_t k = 0; k < labelled_index.size (); ++k)
+  {
+    const int i = labelled_index[k];
+    if (i < 0 || i >= scan.cols () || (k > 0 && i <= labelled_index[k - 1]))
+      throw std::invalid_argument ("[pcl_crf::clustering::completeLabels] labelled index " + std::to_string (i) +
+                                   " is out of range or not increasing");
+    result[i] = labels[k];
+    has_label[i] = true;
+  }
+  const std::vector<int> segment = segmentByDistance (scan, break_distance, 0);
+  const std::vector<Eigen::Index> before = closestLabelled (segment, has_label, -1);
+  const std::vector<Eigen::Index> after = closestLabelled (segment, has_label, +1);
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+  {
+    if (has_label[i])
+      continue;
+    const double d_before = before[i] < 0 ? kInf : (scan.col (before[i]) - scan.col (i)).squaredNorm ();
+    const double d_after = after[i] < 0 ? kInf : (scan.col (after[i]) - scan.col (i)).squaredNorm ();
+    if (d_before < kInf || d_after < kInf)
+      result[i] = result[d_before <= d_after ? before[i] : after[i]];
+  }
+  return result;
+}
+
+}  // namespace clustering
+}  // namespace pcl_crf

@@ -1,0 +1,43 @@
+#include <pcl_crf/matching/pass_geometry.h>
+#include <pcl_crf/matching/shape_features.h>
+
+namespace pcl_crf {
+namespace matching {
+
+ScanShape
+describeScan (const Eigen::Matrix2Xd& points)
+{
+  return {points, computeShapeFeatures (points)};
+}
+
+PreparedTarget
+prepareTarget (const Eigen::Matrix2Xd& target, const CandidateParameters& parameters)
+{
+  PreparedTarget prepared;
+  prepared.scan = describeScan (target);
+  prepared.index.points.build (target);
+  prepared.index.shapes.build (shapeEmbedding (prepared.scan.shape, target, parameters.shape_position_scale));
+  prepared.segments = segmentScan (target, parameters.segments.breakpoint_angle, parameters.segments.range_noise);
+  prepared.normals = segmentNormals (target, prepared.segments);
+  return prepared;
+}
+
+PassGeometry
+preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
+             const CandidateParameters& parameters)
+{
+  PassGeometry pass;
+  pass.T_guess = T_guess;
+  pass.T_current = T_current;
+  pass.source_guess = T_guess * source.points;
+  pass.source_current = T_current * source.points;
+  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, pass.source_current, parameters.shape_position_scale);
+  pass.segment_motions = segmentMotionHypotheses (source.points, pass.source_current, target.scan.points,
+                                                  target.segments, target.index.points, parameters.segments);
+  pass.candidates = findCandidates (pass.source_current, embedding, pass.segment_motions.translation,
+                                    pass.segment_motions.has_hypothesis, target.index, parameters);
+  return pass;
+}
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,110 @@
+#include <pcl_crf/matching/scan_matching.h>
+#include <pcl_crf/matching/matching_chain.h>
+#include <pcl_crf/matching/robust_rigid_fit.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pcl_crf {
+namespace matching {
+
+namespace {
+
+std::vector<int>
+labelsToMatches (const Candidates& candidates, const std::vector<int>& labels)
+{
+  std::vector<int> matches (labels.size (), kNoMatch);
+  for (int i = 0; i < candidates.size (); ++i)
+    if (labels[i] < candidates.count (i))
+      matches[i] = candidates.target (i, labels[i]);
+  return matches;
+}
+
+/** p(y_i = MAP label) of every node. */
+Eigen::VectorXd
+mapProbabilities (const crf::MarginalResult& marginals, const std::vector<int>& labels)
+{
+  Eigen::VectorXd p (static_cast<Eigen::Index> (labels.size ()));
+  for (std::size_t i = 0; i < labels.size (); ++i)
+    p (i) = marginals.node_marginals[i] (labels[i]);
+  return p;
+}
+
+/** 1 − p(y_i = outlier) of every node (the outlier state is the last). */
+Eigen::VectorXd
+inlierProbabilities (const crf::MarginalResult& marginals)
+{
+  Eigen::VectorXd p (static_cast<Eigen::Index> (marginals.node_marginals.size ()));
+  for (std::size_t i = 0; i < marginals.node_marginals.size (); ++i)
+    p (i) = 1.0 - marginals.node_marginals[i] (marginals.node_marginals[i].size () - 1);
+  return p;
+}
+
+void
+checkModel (const CrfMatchingModel& model)
+{
+  if (!model.isTrained ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the model is not trained (train or load one first)");
+  validateParameters (model.parameters);
+}
+
+}  // namespace
+
+PassResult
+runPass (const ScanShape& source, const PreparedTarget& target, const MotionGuess& guess, const Rigid2d& T_current,
+         const StageModel& stage, const MatchingParameters& parameters)
+{
+  PassResult pass;
+  pass.geometry = preparePass (source, target, guess.T_target_source, T_current, parameters.candidates);
+  pass.scores = scorePass (stage, source, target.scan, pass.geometry);
+  const crf::ChainPotentials chain = matchingChainPotentials (source, target.scan, pass.geometry, pass.scores,
+                                                              stage.crf_weights, parameters.residual_scale);
+  pass.map = crf::maxProduct (chain);       // MAP association (Viterbi)
+  pass.marginals = crf::sumProduct (chain); // node marginals (forward–backward)
+  pass.matches = labelsToMatches (pass.geometry.candidates, pass.map.labels);
+  pass.T_estimate = robustRigidFit (source.points, target.scan.points, target.normals, pass.geometry.candidates,
+                                    pass.matches, inlierProbabilities (pass.marginals), T_current, guess, parameters.fit);
+  return pass;
+}
+
+MatchResult
+matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const MotionGuess& guess,
+            const CrfMatchingModel& model)
+{
+  checkModel (model);
+  if (!source.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  MatchResult result;
+  result.T_target_source = guess.T_target_source;
+  if (source.cols () == 0)
+    return result;
+  const ScanShape source_scan = describeScan (source);
+  const int passes = model.parameters.passes;
+  PassResult pass;
+  for (int k = 0; k < passes; ++k) {
+    const StageModel& stage = model.stages[std::min<std::size_t> (k, model.stages.size () - 1)];
+    pass = runPass (source_scan, target, guess, result.T_target_source, stage, model.parameters);
+    result.T_target_source = pass.T_estimate;
+  }
+  result.passes = passes;
+  result.matches = std::move (pass.matches);
+  result.candidates = std::move (pass.geometry.candidates);
+  result.map_probability = mapProbabilities (pass.marginals, pass.map.labels);
+  result.marginals = std::move (pass.marginals.node_marginals);
+  result.inlier_count = static_cast<int> (
+      std::count_if (result.matches.begin (), result.matches.end (), [] (int j) { return j != kNoMatch; }));
+  return result;
+}
+
+MatchResult
+matchScans (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const MotionGuess& guess,
+            const CrfMatchingModel& model)
+{
+  checkModel (model);
+  if (!target.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the target scan holds NaN or infinite points");
+  return matchScans (source, prepareTarget (target, model.parameters.candidates), guess, model);
+}
+
+}  // namespace matching
+}  // namespace pcl_crf

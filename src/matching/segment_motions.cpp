@@ -1,0 +1,166 @@
+#include <pcl_crf/matching/segment_motions.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_crf {
+namespace matching {
+
+namespace {
+
+/** Points of a segment whose overlap scores a hypothesis, evenly spread. */
+constexpr int kScoringSamples = 10;
+
+/** Candidate translations of a source segment: its object ends onto the same
+ *  object ends of nearby target segments. */
+void
+endAlignments (const Eigen::Vector2d& start, const Eigen::Vector2d& finish, const SegmentEnds& trusted,
+               const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
+               const SegmentMotionParameters& parameters, std::vector<Eigen::Vector2d>& hypotheses)
+{
+  hypotheses.assign (1, Eigen::Vector2d::Zero ());  // the current motion itself
+  const double max_squared = parameters.max_displacement * parameters.max_displacement;
+  for (const ScanSegment& t : target_segments) {
+    if (t.size () < parameters.min_segment_points)
+      continue;
+    const SegmentEnds target_trusted = objectEnds (target_scan, t);
+    const Eigen::Vector2d to_start = target_scan.col (t.begin) - start;
+    const Eigen::Vector2d to_finish = target_scan.col (t.end - 1) - finish;
+    if (trusted.start && target_trusted.start && to_start.squaredNorm () <= max_squared)
+      hypotheses.push_back (to_start);
+    if (trusted.finish && target_trusted.finish && to_finish.squaredNorm () <= max_squared)
+      hypotheses.push_back (to_finish);
+  }
+}
+
+/** Indices of up to kScoringSamples evenly spread points of a segment. */
+std::vector<int>
+scoringSamples (const ScanSegment& segment)
+{
+  const int count = std::min (segment.size (), kScoringSamples);
+  std::vector<int> samples (count);
+  for (int k = 0; k < count; ++k)
+    samples[k] = segment.begin + (count == 1 ? 0 : k * (segment.size () - 1) / (count - 1));
+  return samples;
+}
+
+/** The hypotheses of one source segment with the query columns that score them. */
+struct SegmentQuery
+{
+  ScanSegment segment;
+  std::vector<Eigen::Vector2d> hypotheses;
+  std::vector<int> samples;
+  Eigen::Index first_column = 0;
+  /** per sample: whether the target sensor could see it under the current motion. */
+  std::vector<bool> judged;
+};
+
+/** The bearing interval [min, max] the target scan covers (its field of view). */
+struct FieldOfView
+{
+  double min = -M_PI;
+  double max = M_PI;
+
+  bool
+  contains (const Eigen::Vector2d& p) const
+  {
+    const double bearing = std::atan2 (p.y (), p.x ());
+    return bearing >= min && bearing <= max;
+  }
+};
+
+FieldOfView
+fieldOfView (const Eigen::Matrix2Xd& scan)
+{
+  FieldOfView view{M_PI, -M_PI};
+  for (Eigen::Index i = 0; i < scan.cols (); ++i) {
+    const double bearing = std::atan2 (scan (1, i), scan (0, i));
+    view.min = std::min (view.min, bearing);
+    view.max = std::max (view.max, bearing);
+  }
+  return view;
+}
+
+/** The samples a hypothesis is judged on: those the target sensor sees under the
+ *  current motion (points leaving the field of view say nothing against it), or
+ *  all when it sees none of them. */
+std::vector<bool>
+judgedSamples (const std::vector<int>& samples, const Eigen::Matrix2Xd& source_current, const FieldOfView& view)
+{
+  std::vector<bool> judged (samples.size ());
+  bool any = false;
+  for (std::size_t k = 0; k < samples.size (); ++k)
+    any = (judged[k] = view.contains (source_current.col (samples[k]))) || any;
+  if (!any)
+    judged.assign (samples.size (), true);
+  return judged;
+}
+
+}  // namespace
+
+SegmentMotions
+segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matrix2Xd& source_current,
+                         const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
+                         const KnnIndex& target_index, const SegmentMotionParameters& parameters)
+{
+  SegmentMotions motions;
+  const Eigen::Index n = source_scan.cols ();
+  motions.translation.setZero (2, n);
+  motions.has_hypothesis.assign (static_cast<std::size_t> (n), false);
+  motions.current_support.setOnes (n);
+  motions.hypothesis_support.setOnes (n);
+  if (parameters.neighbours <= 0 || target_index.size () == 0)
+    return motions;
+  const FieldOfView view = fieldOfView (target_scan);
+  std::vector<SegmentQuery> queries;
+  Eigen::Index columns = 0;
+  for (const ScanSegment& segment :
+       segmentScan (source_scan, parameters.breakpoint_angle, parameters.range_noise)) {
+    if (segment.size () < parameters.min_segment_points)
+      continue;
+    SegmentQuery query{segment, {}, scoringSamples (segment), columns, {}};
+    query.judged = judgedSamples (query.samples, source_current, view);
+    endAlignments (source_current.col (segment.begin), source_current.col (segment.end - 1),
+                   objectEnds (source_scan, segment), target_scan, target_segments, parameters, query.hypotheses);
+
+    columns += static_cast<Eigen::Index> (query.hypotheses.size () * query.samples.size ());
+    queries.push_back (std::move (query));
+  }
+  Eigen::Matrix2Xd moved (2, columns);
+  for (const SegmentQuery& query : queries) {
+    Eigen::Index column = query.first_column;
+    for (const Eigen::Vector2d& h : query.hypotheses)
+      for (int i : query.samples)
+        moved.col (column++) = source_current.col (i) + h;
+  }
+  const KnnIndex::Result nearest = target_index.search (moved, 1);  // one batched query scores everything
+  const double radius_squared = parameters.overlap_radius * parameters.overlap_radius;
+  for (const SegmentQuery& query : queries) {
+    int best = 0, best_score = -1, current_score = 0;
+    Eigen::Index column = query.first_column;
+    for (std::size_t h = 0; h < query.hypotheses.size (); ++h) {
+      int score = 0;  // explained judged samples; the current motion (h = 0) wins ties
+      for (std::size_t k = 0; k < query.samples.size (); ++k, ++column)
+        score += query.judged[k] && nearest.squared_distances (0, column) <= radius_squared ? 1 : 0;
+      if (h == 0)
+        current_score = score;
+      if (score > best_score) {
+        best_score = score;
+        best = static_cast<int> (h);
+      }
+    }
+    const double samples = static_cast<double> (std::count (query.judged.begin (), query.judged.end (), true));
+    for (int i = query.segment.begin; i < query.segment.end; ++i) {
+      motions.current_support (i) = current_score / samples;
+      motions.hypothesis_support (i) = best_score / samples;
+      if (best == 0)
+        continue;
+      motions.translation.col (i) = query.hypotheses[best];
+      motions.has_hypothesis[i] = true;
+    }
+  }
+  return motions;
+}
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,181 @@
+// Building blocks of CRF-Clustering: segmentation, label completion, N_eff merging
+// (Eq. (8)), ego-cluster selection, motion fits and the model file.
+
+#include <pcl_crf/clustering/cluster_fits.h>
+#include <pcl_crf/clustering/cluster_merging.h>
+#include <pcl_crf/clustering/clustering_model.h>
+#include <pcl_crf/clustering/ego_cluster.h>
+#include <pcl_crf/clustering/point_pairs.h>
+#include <pcl_crf/clustering/scan_segmentation.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace {
+
+using namespace pcl_crf;
+using namespace pcl_crf::clustering;
+
+Eigen::Matrix2Xd
+pointsOnX (const std::vector<double>& xs)
+{
+  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (xs.size ()));
+  for (std::size_t i = 0; i < xs.size (); ++i)
+    points.col (i) << xs[i], 1.0;
+  return points;
+}
+
+TEST (ClusteringSegmentation, BreaksAtGapsAndCapsSegmentLength)
+{
+  const Eigen::Matrix2Xd points = pointsOnX ({0.0, 0.1, 0.2, 1.0, 1.1, 1.2, 1.3, 1.4});
+  EXPECT_EQ (segmentByDistance (points, 0.5), (std::vector<int>{0, 0, 0, 1, 1, 1, 1, 1}));
+  EXPECT_EQ (segmentByDistance (points, 0.5, 2), (std::vector<int>{0, 0, 1, 2, 2, 3, 3, 4}));
+  EXPECT_EQ (segmentByDistance (points, 0.05), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_THROW (segmentByDistance (points, 0.0), std::invalid_argument);
+}
+
+TEST (ClusteringSegmentation, CompletesLabelsFromTheNearestLabelledPointOfTheSegment)
+{
+  // Two segments; the second holds no labelled point and gets the default label 7.
+  const Eigen::Matrix2Xd scan = pointsOnX ({0.0, 0.1, 0.25, 0.3, 0.4, 3.0, 3.1});
+  const std::vector<int> labels = completeLabels (scan, {1, 3}, {4, 5}, 0.5, 7);
+  EXPECT_EQ (labels, (std::vector<int>{4, 4, 5, 5, 5, 7, 7}));
+  EXPECT_THROW (completeLabels (scan, {3, 1}, {4, 5}, 0.5, 7), std::invalid_argument);
+  EXPECT_THROW (completeLabels (scan, {1}, {4, 5}, 0.5, 7), std::invalid_argument);
+}
+
+TEST (ClusteringMerge, EffectiveClusterCountFollowsEq8)
+{
+  EXPECT_DOUBLE_EQ (effectiveClusterCount (Eigen::Vector3d (1.0, 0.0, 0.0)), 1.0);
+  EXPECT_DOUBLE_EQ (effectiveClusterCount (Eigen::Vector2d (0.5, 0.5)), 2.0);
+  EXPECT_NEAR (effectiveClusterCount (Eigen::Vector3d (0.6, 0.2, 0.2)), 1.0 / 0.44, 1e-12);
+  EXPECT_DOUBLE_EQ (effectiveClusterCount (Eigen::Vector2d (2.0, 2.0)), 2.0);  // normalised
+  EXPECT_DOUBLE_EQ (effectiveClusterCount (Eigen::Vector2d::Zero ()), 0.0);
+}
+
+TEST (ClusteringMerge, OverSegmentedStaticWorldMergesIntoOneCluster)
+{
+  // 30 points of one world split into three clusters that explain every point
+  // equally well (p = 1/3 each, N_eff = 3), plus a car (cluster 3) sure of itself.
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero (4, 36);
+  p.topLeftCorner (3, 30).setConstant (1.0 / 3.0);
+  p.block (3, 30, 1, 6).setOnes ();
+  std::vector<int> labels (36, 3);
+  for (int i = 0; i < 30; ++i)
+    labels[i] = i / 10;
+  const std::vector<int> kept = mergeAmbiguousClusters (p, labels, 1.7);
+  // After removing two copies the last one is certain (N_eff 1) and stays.
+  EXPECT_EQ (kept, (std::vector<int>{2, 3}));
+  ASSERT_EQ (p.rows (), 2);
+  for (int i = 0; i < 30; ++i)
+  {
+    EXPECT_EQ (labels[i], 0);
+    EXPECT_NEAR (p (0, i), 1.0, 1e-12);
+  }
+  for (int i = 30; i < 36; ++i)
+    EXPECT_EQ (labels[i], 1);
+}
+
+TEST (ClusteringMerge, DistinctClustersAndEmptyOnesAreHandled)
+{
+  // Points lean 0.9 / 0.1 towards their own cluster: N_eff = 1.22 < 1.7, all stay;
+  // cluster 2 has no point and vanishes.
+  Eigen::MatrixXd p (3, 4);
+  p << 0.9, 0.9, 0.1, 0.1,  //
+      0.1, 0.1, 0.9, 0.9,   //
+      0.0, 0.0, 0.0, 0.0;
+  std::vector<int> labels = {0, 0, 1, 1};
+  EXPECT_EQ (mergeAmbiguousClusters (p, labels, 1.7), (std::vector<int>{0, 1}));
+  EXPECT_EQ (labels, (std::vector<int>{0, 0, 1, 1}));
+  std::vector<int> bad = {0, 5, 1, 1};
+  EXPECT_THROW (mergeAmbiguousClusters (p, bad, 1.7), std::invalid_argument);
+}
+
+TEST (ClusteringEgo, StaticClusterIsTheMahalanobisNearestToOdometry)
+{
+  // Odometry: 3 m forward, x well known (σ 0.01 m), y poorly (σ 1 m).
+  Odometry odometry;
+  odometry.T_source_target = makeRigid2d (3.0, 0.0, 0.0);
+  odometry.covariance = Eigen::Vector3d (1e-4, 1.0, 1e-4).asDiagonal ();
+  // Cluster A's sensor motion is 0.2 m off in x, B's 0.5 m off in y: A is nearer in
+  // Euclidean distance, B in Mahalanobis distance (0.2² / 1e-4 = 400 against 0.5² / 1 = 0.25).
+  const Rigid2d a = makeRigid2d (3.2, 0.0, 0.0).inverse ();
+  const Rigid2d b = makeRigid2d (3.0, 0.5, 0.0).inverse ();
+  EXPECT_NEAR (odometryMahalanobis (a, odometry), 400.0, 1e-6);
+  EXPECT_NEAR (odometryMahalanobis (b, odometry), 0.25, 1e-9);
+  EXPECT_EQ (selectStaticCluster ({a, b}, odometry), 1);
+  EXPECT_EQ (selectStaticCluster ({}, odometry), -1);
+  // The angle difference is wrapped: +π − ε and −π + ε are 2ε apart.
+  odometry.T_source_target = makeRigid2d (0.0, 0.0, M_PI - 0.01);
+  EXPECT_NEAR (odometryMahalanobis (makeRigid2d (0.0, 0.0, -M_PI + 0.01).inverse (), odometry), 0.02 * 0.02 / 1e-4,
+               1e-6);
+}
+
+TEST (ClusteringFits, HardAndSoftFitsRecoverKnownMotions)
+{
+  const Rigid2d car = makeRigid2d (1.5, -0.3, 0.2), world = makeRigid2d (-3.0, 0.1, -0.05);
+  Eigen::Matrix2Xd source (2, 8), target (2, 8);
+  std::vector<int> match (8), labels (8);
+  for (int i = 0; i < 8; ++i)
+  {
+    source.col (i) << 0.7 * i, std::sin (i);
+    labels[i] = i < 4 ? 0 : 1;
+    target.col (i) = (labels[i] == 0 ? world : car) * Eigen::Vector2d (source.col (i));
+    match[i] = i;
+  }
+  const PointPairs pairs = makePointPairs (source, target, match);
+  const std::vector<Rigid2d> hard = fitMotions (pairs, labels, 2);
+  const std::vector<Rigid2d> soft = solveFits (accumulateFits (pairs, oneHot (labels, 2)));
+  for (const auto& motions : {hard, soft})
+  {
+    EXPECT_LT ((motions[0].inverse () * world).translation ().norm (), 1e-9);
+    EXPECT_LT (std::abs (rotationAngle (motions[1].inverse () * car)), 1e-9);
+  }
+  EXPECT_LT (squaredResiduals (pairs, hard).row (0).head (4).maxCoeff (), 1e-18);
+  match[2] = 9;
+  EXPECT_THROW (makePointPairs (source, target, match), std::invalid_argument);
+}
+
+TEST (ClusteringModel, RoundTripsAndRejectsBrokenFiles)
+{
+  CrfClusteringModel model;
+  model.weights << 0.03125, -3.25, 0.0625, 4.5, -0.7 + 1e-13;
+  model.features.min_neighbour_distance = 0.02;
+  std::stringstream text;
+  writeModel (text, model);
+  const CrfClusteringModel read = readModel (text, "memory");
+  EXPECT_EQ (read.weights, model.weights);
+  EXPECT_EQ (read.features.min_neighbour_distance, 0.02);
+
+  const std::string good = text.str ();
+  auto reads = [] (const std::string& content) {
+    std::istringstream in (content);
+    return readModel (in, "broken.model");
+  };
+  auto replaced = [&good] (const std::string& from, const std::string& to) {
+    std::string copy = good;
+    copy.replace (copy.find (from), from.size (), to);
+    return copy;
+  };
+  EXPECT_THROW (reads (replaced ("model 1", "model 2")), std::runtime_error);              // version
+  EXPECT_THROW (reads (replaced ("stiffness", "# stiffness")), std::runtime_error);        // missing field
+  EXPECT_THROW (reads (replaced ("beam_residual -3.25", "beam_residual nan")), std::runtime_error);  // NaN
+  EXPECT_THROW (reads (replaced ("beam_residual -3.25", "beam_residual -3 4")), std::runtime_error); // extra value
+  EXPECT_THROW (reads (good + "stiffness 1\n"), std::runtime_error);                        // repeated
+  EXPECT_THROW (reads (good + "colour 1\n"), std::runtime_error);                           // unknown
+  EXPECT_THROW (reads (""), std::runtime_error);
+  try
+  {
+    reads (replaced ("model 1", "model 2"));
+  }
+  catch (const std::runtime_error& error)
+  {
+    EXPECT_NE (std::string (error.what ()).find ("version 2"), std::string::npos);
+  }
+  EXPECT_THROW (loadModel ("/nonexistent/crf-t.model"), std::runtime_error);
+}
+
+}  // namespace

@@ -1,0 +1,275 @@
+// Tests of the PCL adapter pcl_crf::CRFMatcher (with the shipped default model).
+
+#include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/crf_matcher.h>
+
+#include "synthetic_scene.h"
+
+#include <pcl/registration/icp.h>
+#include <pcl/registration/transformation_estimation_2D.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using pcl_crf::makeRigid2d;
+using pcl_crf::Rigid2d;
+
+const std::string kModelPath = std::string (PCL_CRF_SOURCE_DIR) + "/data/models/crf-matching.model";
+
+/** The shipped model, read once. */
+const pcl_crf::matching::CrfMatchingModel&
+defaultModel ()
+{
+  static const pcl_crf::matching::CrfMatchingModel model = pcl_crf::matching::loadModel (kModelPath);
+  return model;
+}
+
+template <typename PointT> typename pcl::PointCloud<PointT>::Ptr
+cloudOf (const Eigen::Matrix2Xd& xy)
+{
+  typename pcl::PointCloud<PointT>::Ptr cloud (new pcl::PointCloud<PointT>);
+  pcl_crf::fromMatrix2X (xy, *cloud);
+  return cloud;
+}
+
+Eigen::Matrix4f
+toMatrix4f (const Rigid2d& T)
+{
+  Eigen::Matrix4f M = Eigen::Matrix4f::Identity ();
+  M.topLeftCorner<2, 2> () = T.linear ().cast<float> ();
+  M.block<2, 1> (0, 3) = T.translation ().cast<float> ();
+  return M;
+}
+
+template <typename PointT>
+class CrfMatcherTest : public ::testing::Test
+{
+protected:
+  using Matcher = pcl_crf::CRFMatcher<PointT, PointT>;
+
+  void
+  SetUp () override
+  {
+    truth_ = makeRigid2d (0.5, 0.2, 0.1);
+    pair_ = pcl_crf::test::staticRoomPair (truth_, makeRigid2d (0.06, -0.05, 0.02));
+    source_ = cloudOf<PointT> (pair_.source);
+    target_ = cloudOf<PointT> (pair_.target);
+    matcher_.setModel (defaultModel ());
+    matcher_.setInputSource (source_);
+    matcher_.setInputTarget (target_);
+    matcher_.setOdometry (pair_.odometry);
+  }
+
+  Rigid2d truth_;
+  pcl_crf::ScanPair pair_;
+  typename pcl::PointCloud<PointT>::Ptr source_, target_;
+  Matcher matcher_;
+};
+
+using PointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZI, pcl::PointXYZL>;
+TYPED_TEST_SUITE (CrfMatcherTest, PointTypes);
+
+TYPED_TEST (CrfMatcherTest, CorrespondencesOfARigidlyMovedRoom)
+{
+  pcl::Correspondences correspondences;
+  this->matcher_.determineCorrespondences (correspondences);
+  const auto n = static_cast<std::size_t> (this->pair_.source.cols ());
+  // Measured: 315 of the room's 316 points matched, all correctly.
+  EXPECT_GT (correspondences.size (), 0.97 * n);
+  std::size_t correct = 0;
+  const Rigid2d guess = this->pair_.odometry.T_source_target.inverse ();
+  for (const pcl::Correspondence& c : correspondences) {
+    ASSERT_GE (c.index_query, 0);
+    ASSERT_LT (static_cast<std::size_t> (c.index_query), n);
+    correct += c.index_match == this->pair_.source_match[c.index_query] ? 1 : 0;
+    // distance: squared distance under the guess, in float.
+    const double expected =
+        (guess * this->pair_.source.col (c.index_query) - this->pair_.target.col (c.index_match)).squaredNorm ();
+    EXPECT_NEAR (c.distance, expected, 1e-4 * (1.0 + expected));
+  }
+  EXPECT_GT (correct, 0.97 * n);
+  EXPECT_EQ (this->matcher_.getOutliers ().size () + correspondences.size (), n);
+  // The estimated motion.
+  const Eigen::Matrix4f T = this->matcher_.getTransformation ();
+  const Eigen::Matrix4f error = T.inverse () * toMatrix4f (this->truth_);
+  EXPECT_LT ((error.template block<2, 1> (0, 3).norm ()), 2e-3);
+  EXPECT_LT (std::abs (std::atan2 (error (1, 0), error (0, 0))), 5e-4);
+  // Marginals and candidates per cloud point.
+  ASSERT_EQ (this->matcher_.getMarginals ().size (), n);
+  ASSERT_EQ (this->matcher_.getCandidates ().size (), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ (this->matcher_.getMarginals ()[i].size (),
+               static_cast<Eigen::Index> (this->matcher_.getCandidates ()[i].size () + 1));
+    EXPECT_NEAR (this->matcher_.getMarginals ()[i].sum (), 1.0, 1e-9);
+  }
+}
+
+TYPED_TEST (CrfMatcherTest, MaxDistanceIsRespected)
+{
+  pcl::Correspondences all, near;
+  this->matcher_.determineCorrespondences (all);
+  this->matcher_.determineCorrespondences (near, 0.1);
+  EXPECT_LT (near.size (), all.size ());
+  EXPECT_GT (near.size (), 0u);
+  for (const pcl::Correspondence& c : near)
+    EXPECT_LE (c.distance, 0.01f + 1e-6f);
+}
+
+TYPED_TEST (CrfMatcherTest, NanPointsAreSkippedAndIndicesMappedBack)
+{
+  auto source = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);
+  auto target = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->target_);
+  const float nan = std::numeric_limits<float>::quiet_NaN ();
+  (*source)[5].x = nan;
+  (*target)[40].y = nan;
+  this->matcher_.setInputSource (source);
+  this->matcher_.setInputTarget (target);
+  pcl::Correspondences correspondences;
+  this->matcher_.determineCorrespondences (correspondences);
+  EXPECT_GT (correspondences.size (), 0.95 * source->size ());
+  std::size_t correct = 0;
+  for (const pcl::Correspondence& c : correspondences) {
+    EXPECT_NE (c.index_query, 5);
+    EXPECT_NE (c.index_match, 40);
+    correct += c.index_match == this->pair_.source_match[c.index_query] ? 1 : 0;
+  }
+  EXPECT_GT (correct, 0.95 * source->size ());
+  EXPECT_TRUE (this->matcher_.getMarginals ()[5].size () == 0);
+  for (const auto index : this->matcher_.getOutliers ())
+    EXPECT_NE (index, 5);
+}
+
+TYPED_TEST (CrfMatcherTest, FarPointsAreOutliers)
+{
+  auto source = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);
+  for (int k = 0; k < 6; ++k) {  // a small object 40 m away, nowhere in the target
+    (*source)[100 + k].x = 40.0f;
+    (*source)[100 + k].y = 0.1f * k;
+  }
+  this->matcher_.setInputSource (source);
+  pcl::Correspondences correspondences;
+  this->matcher_.determineCorrespondences (correspondences);
+  const pcl::Indices& outliers = this->matcher_.getOutliers ();
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NE (std::find (outliers.begin (), outliers.end (), 100 + k), outliers.end ()) << k;
+}
+
+TYPED_TEST (CrfMatcherTest, BadInputGivesAnEmptyResult)
+{
+  using Matcher = typename TestFixture::Matcher;
+  pcl::Correspondences correspondences{pcl::Correspondence (0, 0, 1.0f)};
+  pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel ();
+  pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);  // the PCL_ERRORs are expected
+  {  // no source cloud
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    matcher.setInputTarget (this->target_);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+  }
+  {  // no target cloud (an empty target is refused by setInputTarget)
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    matcher.setInputSource (this->source_);
+    matcher.setInputTarget (pcl::make_shared<pcl::PointCloud<TypeParam>> ());
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+  }
+  {  // empty source cloud
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    matcher.setInputSource (pcl::make_shared<pcl::PointCloud<TypeParam>> ());
+    matcher.setInputTarget (this->target_);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    EXPECT_TRUE (matcher.getOutliers ().empty ());
+  }
+  {  // only NaN points
+    auto nan_cloud = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);
+    for (auto& p : *nan_cloud)
+      p.x = std::numeric_limits<float>::quiet_NaN ();
+    this->matcher_.setInputSource (nan_cloud);
+    correspondences.emplace_back (0, 0, 1.0f);
+    this->matcher_.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+  }
+  {  // no model, then a bad parameter
+    Matcher matcher;
+    matcher.setInputSource (this->source_);
+    matcher.setInputTarget (this->target_);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    EXPECT_FALSE (matcher.loadModel ("/nonexistent/crf-matching.model"));
+    matcher.setModel (defaultModel ());
+    matcher.setPasses (5);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    matcher.setPasses (2);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_FALSE (correspondences.empty ());
+  }
+  pcl::console::setVerbosityLevel (level);
+}
+
+TYPED_TEST (CrfMatcherTest, ReciprocalCorrespondencesAgreeBothWays)
+{
+  pcl::Correspondences forward, reciprocal;
+  this->matcher_.determineCorrespondences (forward);
+  this->matcher_.determineReciprocalCorrespondences (reciprocal);
+  EXPECT_LE (reciprocal.size (), forward.size ());
+  EXPECT_GT (reciprocal.size (), 0.9 * forward.size ());
+  for (const pcl::Correspondence& c : reciprocal)
+    EXPECT_EQ (c.index_match, this->pair_.source_match[c.index_query]);
+}
+
+TYPED_TEST (CrfMatcherTest, SettersAndClone)
+{
+  EXPECT_EQ (this->matcher_.getGuessNeighbours (), defaultModel ().parameters.candidates.guess_neighbours);
+  this->matcher_.setGuessNeighbours (3);
+  this->matcher_.setSegmentNeighbours (1);
+  this->matcher_.setMaxObjectDisplacement (4.0);
+  EXPECT_EQ (this->matcher_.getGuessNeighbours (), 3);
+  EXPECT_EQ (this->matcher_.getSegmentNeighbours (), 1);
+  EXPECT_DOUBLE_EQ (this->matcher_.getMaxObjectDisplacement (), 4.0);
+  const Eigen::Matrix4f guess = toMatrix4f (makeRigid2d (0.1, 0.2, 0.3));
+  this->matcher_.setInitialGuess (guess);
+  EXPECT_TRUE (this->matcher_.getInitialGuess ().isApprox (guess, 1e-6f));
+  auto copy = this->matcher_.clone ();
+  pcl::Correspondences a, b;
+  this->matcher_.determineCorrespondences (a);
+  copy->determineCorrespondences (b);
+  ASSERT_EQ (a.size (), b.size ());
+  for (std::size_t k = 0; k < a.size (); ++k)
+    EXPECT_EQ (a[k].index_match, b[k].index_match);
+}
+
+TYPED_TEST (CrfMatcherTest, WorksInsideIterativeClosestPoint)
+{
+  pcl::IterativeClosestPoint<TypeParam, TypeParam> icp;
+  typename pcl_crf::CRFMatcher<TypeParam, TypeParam>::Ptr matcher (new pcl_crf::CRFMatcher<TypeParam, TypeParam>);
+  matcher->setModel (defaultModel ());  // guess: identity, ICP moves the source itself
+  icp.setCorrespondenceEstimation (matcher);
+  icp.setTransformationEstimation (
+      pcl::make_shared<pcl::registration::TransformationEstimation2D<TypeParam, TypeParam>> ());
+  icp.setInputSource (this->source_);
+  icp.setInputTarget (this->target_);
+  icp.setMaximumIterations (10);
+  icp.setTransformationEpsilon (1e-10);
+  icp.setMaxCorrespondenceDistance (1.0);
+  pcl::PointCloud<TypeParam> aligned;
+  icp.align (aligned, toMatrix4f (this->pair_.odometry.T_source_target.inverse ()));
+  ASSERT_TRUE (icp.hasConverged ());
+  const Eigen::Matrix4f error = icp.getFinalTransformation ().inverse () * toMatrix4f (this->truth_);
+  EXPECT_LT ((error.template block<2, 1> (0, 3).norm ()), 2e-3);
+  EXPECT_LT (std::abs (std::atan2 (error (1, 0), error (0, 0))), 5e-4);
+}
+
+}  // namespace
