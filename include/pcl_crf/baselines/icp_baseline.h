@@ -13,7 +13,7 @@ struct IcpBaselineOptions
   /** ICP iterations at most (PCL: setMaximumIterations). */
   int max_iterations = 100;
   /** pairs farther apart are ignored while aligning [m] (PCL: setMaxCorrespondenceDistance). */
-  double max_correspondence_distance = 1.0;
+  double max_correspondence_distance = 0.5;
   /** stop when the transform changes less than this (PCL: setTransformationEpsilon). */
   double transformation_epsilon = 1e-12;
   /** after alignment, a source point whose nearest target point is farther than
