@@ -109,4 +109,23 @@ TEST_F (EvalTool, TrainToolRejectsMethodsWithoutModels)
   EXPECT_NE (run.output.find ("required"), std::string::npos) << run.output;
 }
 
+TEST_F (EvalTool, TrainedModelIsUsedByEval)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const std::string set = (dir_ / "set").string ();
+  fs::create_directories (dir_ / "models");
+  auto run = runTool ("pcl_crf_train", set + " --method kmeans -o " + (dir_ / "models" / "kmeans.model").string ());
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  std::ifstream model (dir_ / "models" / "kmeans.model");
+  std::string header;
+  std::getline (model, header);
+  EXPECT_EQ (header, "pcl_crf_kmeans_model 1");
+  run = runTool ("pcl_crf_eval", set + " --method kmeans -q --models " + (dir_ / "models").string ());
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("pairs: kmeans=1"), std::string::npos) << run.output;
+  run = runTool ("pcl_crf_eval", set + " --method kmeans -q");
+  EXPECT_NE (run.exit_code, 0);
+  EXPECT_NE (run.output.find ("give --train DIR or --models DIR"), std::string::npos) << run.output;
+}
+
 }  // namespace
