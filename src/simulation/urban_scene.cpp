@@ -1,10 +1,3 @@
-// Deterministic floating point: no fused multiply-add contraction (see data/SIMULATOR.md).
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#elif defined(__GNUC__)
-#pragma GCC optimize ("fp-contract=off")
-#endif
-
 #include <pcl_crf/simulation/urban_scene.h>
 #include <pcl_crf/simulation/rigid_math.h>
 
