@@ -1,7 +1,11 @@
 #pragma once
 // Small helpers shared by the pcl_crf_* tools.
 
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+
 #include <cstring>
+#include <exception>
 #include <set>
 #include <sstream>
 #include <string>
@@ -38,6 +42,32 @@ splitCommas (const std::string& text)
     if (!part.empty ())
       parts.push_back (part);
   return parts;
+}
+
+/** A bare call or -h / --help: prints the usage and gives the exit code (1 for
+ *  a bare call, 0 when help was asked for); otherwise -1, meaning "go on". */
+inline int
+helpExitCode (int argc, char** argv, void (*print_help) (const char*))
+{
+  if (argc >= 2 && !pcl::console::find_switch (argc, argv, "-h") &&
+      !pcl::console::find_switch (argc, argv, "--help"))
+    return -1;
+  print_help (argv[0]);
+  return argc < 2 ? 1 : 0;
+}
+
+/** Runs a tool's work and gives its exit code; an exception is printed as an
+ *  error and gives 1. */
+template <typename Work> int
+exitCodeOf (Work&& work)
+{
+  try {
+    return work ();
+  }
+  catch (const std::exception& error) {
+    pcl::console::print_error ("%s\n", error.what ());
+    return 1;
+  }
 }
 
 }  // namespace apps

@@ -188,18 +188,10 @@ run (const EvalArguments& args)
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
-    printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
+  if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
+    return code;
   EvalArguments args;
   if (!parseArguments (argc, argv, args))
     return 1;
-  try {
-    return run (args);
-  }
-  catch (const std::exception& error) {
-    print_error ("%s\n", error.what ());
-    return 1;
-  }
+  return pcl_crf::apps::exitCodeOf ([&] { return run (args); });
 }

@@ -360,10 +360,8 @@ run (const RunArguments& args)
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
-    printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
+  if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
+    return code;
   if (find_switch (argc, argv, "--list-methods")) {
     for (const auto& name : pcl_crf::availableEvaluationMethods ())
       std::cout << name << '\n';
@@ -372,11 +370,5 @@ main (int argc, char** argv)
   RunArguments args;
   if (!parseArguments (argc, argv, args))
     return 1;
-  try {
-    return run (args);
-  }
-  catch (const std::exception& error) {
-    print_error ("%s\n", error.what ());
-    return 1;
-  }
+  return pcl_crf::apps::exitCodeOf ([&] { return run (args); });
 }

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "app_common.h"
+
 using namespace pcl::console;
 namespace sim = pcl_crf::simulation;
 
@@ -322,10 +324,8 @@ compute (const Options& o)
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
-    printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
+  if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
+    return code;
   try {
     return compute (parseOptions (argc, argv));
   }

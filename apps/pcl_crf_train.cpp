@@ -33,10 +33,8 @@ printHelp (const char* program)
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
-    printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
+  if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
+    return code;
   const auto positional = pcl_crf::apps::positionalArguments (argc, argv, {"--method", "-o"});
   std::string method_name, output;
   parse_argument (argc, argv, "--method", method_name);
@@ -45,7 +43,7 @@ main (int argc, char** argv)
     return print_error ("Expected exactly one training dataset folder (see -h).\n"), 1;
   if (method_name.empty () || output.empty ())
     return print_error ("Both --method NAME and -o MODEL_FILE are required (see -h).\n"), 1;
-  try {
+  return pcl_crf::apps::exitCodeOf ([&] {
     auto method = pcl_crf::createEvaluationMethod (method_name);
     if (!method->isLearned ())
       return print_error ("Method '%s' learns nothing: there is no model to train.\n", method_name.c_str ()), 1;
@@ -57,9 +55,5 @@ main (int argc, char** argv)
     method->saveModel (output);
     print_info ("Wrote "), print_value ("%s", output.c_str ()), print_info (" in %g s\n", timer.toc () / 1000.0);
     return 0;
-  }
-  catch (const std::exception& error) {
-    print_error ("%s\n", error.what ());
-    return 1;
-  }
+  });
 }

@@ -424,14 +424,12 @@ interactive (const ViewerArguments& args, PairBrowser& browser, FrameLoader& loa
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || find_switch (argc, argv, "-h") || find_switch (argc, argv, "--help")) {
-    printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
+  if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
+    return code;
   ViewerArguments args;
   if (!parseArguments (argc, argv, args))
     return 1;
-  try {
+  return pcl_crf::apps::exitCodeOf ([&] {
     PairBrowser browser (args);
     FrameLoader loader (args);
     if (!vis::hasDisplay ()) {
@@ -447,9 +445,5 @@ main (int argc, char** argv)
     if (!args.screenshot.empty ())
       return screenshot (args, browser, loader);
     return interactive (args, browser, loader);
-  }
-  catch (const std::exception& error) {
-    print_error ("%s\n", error.what ());
-    return 1;
-  }
+  });
 }
