@@ -1,5 +1,6 @@
 #include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/evaluation/clustering_methods.h>
+#include <pcl_crf/evaluation/joint_methods.h>
 #include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/evaluation/method.h>
 
@@ -38,6 +39,7 @@ registry ()
       {"kmeans", [] (const MethodSettings& settings) { return makeKMeansMethod (settings.cluster_count); }},
       {"cbd", [] (const MethodSettings&) { return makeConsistencyMethod (); }},
       {"crf-t", [] (const MethodSettings&) { return makeCrfClusteringTrueAssociationsMethod (); }},
+      {"joint", [] (const MethodSettings&) { return makeJointMethod (); }},
   };
   return methods;
 }

@@ -1,0 +1,135 @@
+#pragma once
+
+#include <pcl_crf/core/prediction.h>
+#include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/crf/chain_potentials.h>
+#include <pcl_crf/joint/joint_model.h>
+#include <pcl_crf/matching/boosting_features.h>
+#include <pcl_crf/matching/pass_geometry.h>
+#include <pcl_crf/matching/robust_rigid_fit.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+
+/** \brief What the joint model finds for one scan pair (frames as in ScanPair).
+ *
+ *  \code
+ *  const pcl_crf::joint::JointResult r = pcl_crf::joint::estimateJoint (pair.source, pair.target, pair.odometry, model);
+ *  const pcl_crf::Rigid2d ego = r.T_source_target;                  // the sensor's motion
+ *  for (int i : r.outliers) ...                                      // points no cluster explains
+ *  \endcode
+ */
+struct JointResult
+{
+  /** per source point: its target point (MAP association), or kNoMatch. */
+  std::vector<int> source_match;
+  /** per source point: its cluster (numbered largest first), or kOutlierCluster. */
+  std::vector<int> source_cluster;
+  /** per cluster: T_target_source, mapping its source points into the target frame. */
+  std::vector<Rigid2d> cluster_motions;
+  /** per cluster: its number of source points. */
+  std::vector<int> cluster_sizes;
+  /** the static world (nearest to the odometry in Mahalanobis distance), or −1. */
+  int static_cluster = -1;
+  /** the sensor's motion: its pose at the target time in the source frame
+   *  (the inverse of the static world's motion; the odometry without clusters). */
+  Rigid2d T_source_target = Rigid2d::Identity ();
+  /** source points in the outlier cluster, increasing. */
+  std::vector<int> outliers;
+  /** clusters proposed by the initial CRF-Clustering. */
+  int initial_clusters = 0;
+  /** inference rounds (each followed by the removal of vacuous clusters). */
+  int rounds = 0;
+  /** belief-propagation iterations over all rounds. */
+  int iterations = 0;
+  /** true when the last round's inference converged. */
+  bool converged = false;
+};
+
+/** \brief The association side of the joint CRF for one pair: CRF-Matching's first
+ *  pass (its MAP associations and robust motion), then the candidates and boosted
+ *  scores of the joint pass under that motion (stage 2 of the matcher's model).
+ */
+struct AssociationStage
+{
+  matching::ScanShape source;
+  /** pass 1's MAP target of every source point, or kNoMatch. */
+  std::vector<int> first_matches;
+  /** pass 1's estimate of the static motion T_target_source. */
+  Rigid2d T_first = Rigid2d::Identity ();
+  /** the joint pass: candidates (the association states) and their raw geometry. */
+  matching::PassGeometry pass;
+  matching::BoostedScores scores;
+};
+
+/** \brief The state of the ladder inference starts from: cluster motions, and the
+ *  association state and cluster (K = the outlier cluster) of every point. */
+struct LadderStart
+{
+  std::vector<Rigid2d> motions;
+  std::vector<int> association;
+  std::vector<int> cluster;
+};
+
+/** \brief Pass 1 of CRF-Matching from the guess (fills source, first_matches, T_first).
+ *  \param[in] matcher a trained CRF-Matching model */
+AssociationStage
+firstAssociationPass (const Eigen::Matrix2Xd& source, const matching::PreparedTarget& target,
+                      const matching::MotionGuess& guess, const matching::CrfMatchingModel& matcher);
+
+/** \brief The initial clusters: CRF-Clustering (the model's initial_clustering) of
+ *  pass 1's associations; unassociated points start in the outlier cluster, and
+ *  start.association is left empty (see jointPass). */
+LadderStart
+initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const AssociationStage& stage,
+                 const JointModel& model, const clustering::CrfClusteringParameters& parameters,
+                 const Odometry& odometry);
+
+/** \brief The joint pass (fills stage.pass, stage.scores and start.association): the
+ *  candidates under pass 1's motion, where every point of a cluster that moves
+ *  relative to it takes that cluster's motion as its motion hypothesis (so its
+ *  candidates include the target points near T_l s_i, and the boosted features
+ *  measure the residuals under it); pass 1's associations become the initial states.
+ */
+void
+jointPass (AssociationStage& stage, const matching::PreparedTarget& target, const matching::MotionGuess& guess,
+           const matching::CrfMatchingModel& matcher, LadderStart& start);
+
+/** \brief The joint CRF's association chain potentials w_a · f_a (CRF-Matching's features). */
+crf::ChainPotentials
+associationPotentials (const AssociationStage& stage, const matching::PreparedTarget& target, const JointModel& model);
+
+/** \brief Joint scan matching, moving-object detection and motion estimation
+ *  (Tipaldi & Ramos's joint model): CRF-Matching's first pass proposes the static
+ *  motion and associations, CRF-Clustering of those proposes the clusters; then
+ *  rounds of modified loopy max-product on the joint ladder CRF (inferLadder) with
+ *  the motions refitted as messages flow, each followed by the removal of vacuous
+ *  clusters (fewer than min_cluster_points points) and ambiguous ones (average
+ *  N_eff above max_average_neff), until no cluster is removed.
+ *
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] odometry the sensor motion guess and its covariance (candidates, ego cluster)
+ *  \param[in] model a trained model
+ *  \param[in] parameters runtime settings
+ *  \throws std::invalid_argument for an untrained model, invalid parameters, or
+ *  empty or non-finite scans.
+ */
+JointResult
+estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
+               const JointModel& model, const JointParameters& parameters = {});
+
+/** \brief A joint result as a Prediction for the metrics: the associations, the
+ *  clusters with the outlier cluster's points given the cluster of their nearest
+ *  clustered neighbour in the same distance segment (as CRF-M labels points without
+ *  an association, so that both are scored alike), the motions, the static cluster
+ *  and the sensor's motion. */
+Prediction
+toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/matching/candidates.h>
+#include <pcl_crf/matching/matching_chain.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+
+/** \brief The weights of the joint model (joint paper, Sec. IV-C), in this order.
+ *
+ *  The association chain x^a keeps CRF-Matching's features (matching::UnaryFeature,
+ *  matching::PairwiseFeature: data and outlier boosting; sequence, pairwise outlier,
+ *  pairwise distance, pairwise translation). The clustering chain x^c has D = K + 1
+ *  states per point, K clusters with motions x^RT = (T_0 … T_{K−1}) and the outlier
+ *  cluster K. The rung between x^a_i and x^c_i carries the clustering local
+ *  features, which read both chains and the motions:
+ *  - cluster distance: for an association to target point t_j and a cluster l < K,
+ *    log(1 + ||T_l s_i − t_j||² / h²) at the two scales of CRF-Clustering
+ *    (clustering::unaryScales: the scan's sampling distance and beam spacing at s_i);
+ *  - cluster inlier: the consistency of the two chains, one indicator per
+ *    combination of "association is the outlier state" and "cluster is the outlier
+ *    cluster" (the outlier threshold is the weight of "matched but in the outlier
+ *    cluster").
+ *  The clustering pairwise features between x^c_i and x^c_{i+1} (d = ||s_{i+1} − s_i||):
+ *  neighbour [k = l], weighted neighbour [k = l] / max(d, d_min), neighbour stiffness
+ *  | ||T_k s_i − T_l s_{i+1}|| − d |, and pairwise outlier (exactly one / both in
+ *  the outlier cluster).
+ */
+enum JointWeight : int
+{
+  // association chain: matching::kCrfWeightCount weights in matching's order
+  kAssociationWeights = 0,
+  // rungs x^a_i — x^c_i
+  kRungSpacingResidual = matching::kCrfWeightCount,
+  kRungBeamResidual,
+  kRungMatchedOutlierCluster,
+  kRungUnmatchedCluster,
+  kRungUnmatchedOutlierCluster,
+  // clustering chain x^c_i — x^c_{i+1}
+  kClusterNeighbour,
+  kClusterWeightedNeighbour,
+  kClusterStiffness,
+  kClusterOutlierSwitch,
+  kClusterOutlierRun,
+  kJointWeightCount
+};
+
+/** \brief Names of the weights in order (the model file's keys). */
+const std::vector<const char*>&
+jointWeightNames ();
+
+/** \brief The geometry the rung and clustering features read, fixed for one scan pair. */
+struct LadderGeometry
+{
+  /** source points [m, source frame], n columns. */
+  Eigen::Matrix2Xd source;
+  /** target points [m, target frame]. */
+  Eigen::Matrix2Xd target;
+  /** association states of every source point: its candidates, then the outlier state. */
+  matching::Candidates candidates;
+  /** 2 x n inverse squared scales of the cluster-distance features [1/m²]. */
+  Eigen::Matrix2Xd inverse_scales;
+  /** n − 1 distances ||s_{i+1} − s_i|| [m]. */
+  Eigen::VectorXd neighbour_distance;
+  /** distances are clamped to at least this in the weighted neighbour feature [m]. */
+  double min_neighbour_distance = 0.01;
+
+  int
+  size () const { return static_cast<int> (source.cols ()); }
+
+  /** \brief Association states of point i (candidates + outlier). */
+  int
+  associationStates (int i) const { return candidates.count (i) + 1; }
+};
+
+/** \brief Builds the geometry of a pair from its candidates.
+ *  \param[in] min_spacing lower bound of the residual scales [m] (clustering::FeatureOptions)
+ *  \param[in] min_neighbour_distance lower bound of d in the weighted neighbour feature [m]
+ */
+LadderGeometry
+makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                    const matching::Candidates& candidates, double min_spacing = 0.01,
+                    double min_neighbour_distance = 0.01);
+
+/** \brief Rung log-potential of point i: S_a x (K + 1), entry (s, l) = w · f_rung(s, l).
+ *  \param[in] transformed_source 2 x K, column l = T_l s_i
+ */
+void
+rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
+               const Eigen::VectorXd& weights, Eigen::MatrixXd& potential);
+
+/** \brief Rung features of point i in states (s, l), kJointWeightCount wide (zeros outside
+ *  the rung block). \param[in] motions the K cluster motions T_target_source */
+Eigen::VectorXd
+rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::vector<Rigid2d>& motions);
+
+/** \brief Clustering edge log-potential between points i and i + 1: (K + 1) x (K + 1).
+ *  \param[in] moved_here 2 x K, column l = T_l s_i; \param[in] moved_next the same for s_{i+1}
+ */
+void
+clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& moved_here,
+                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& weights, Eigen::MatrixXd& potential);
+
+/** \brief Clustering edge features in states (k, l), kJointWeightCount wide. */
+Eigen::VectorXd
+clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const std::vector<Rigid2d>& motions);
+
+/** \brief Every source point moved by every motion: 2 x (n K), column i K + l = T_l s_i. */
+Eigen::Matrix2Xd
+moveByAll (const Eigen::Matrix2Xd& source, const std::vector<Rigid2d>& motions);
+
+}  // namespace joint
+}  // namespace pcl_crf

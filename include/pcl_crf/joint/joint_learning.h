@@ -1,0 +1,71 @@
+#pragma once
+
+#include <pcl_crf/clustering/crf_clustering.h>
+#include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/crf/lbfgs_minimizer.h>
+#include <pcl_crf/crf/node_pseudo_likelihood.h>
+#include <pcl_crf/joint/joint_model.h>
+#include <pcl_crf/matching/matching_model.h>
+
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+
+/** \brief Settings of joint learning. */
+struct JointLearningOptions
+{
+  /** the association chain's candidates, boosting and passes (trainCrfMatching). */
+  matching::MatchingParameters matching;
+  /** the initial clustering (learned on the matcher's associations, its prior chosen
+   *  by cross-validation as for CRF-M). */
+  clustering::CrfClusteringParameters clustering;
+  /** σ of the Gaussian prior on the joint weights (> 0); default 10. */
+  double prior_sigma = 10.0;
+  /** L-BFGS stopping rules. */
+  crf::LbfgsOptions lbfgs;
+  /** the candidates of JointModel::min_cluster_points [points]; default 3, 5, 8, 13, 20. */
+  std::vector<int> min_cluster_points_grid{3, 5, 8, 13, 20};
+};
+
+/** \brief The node conditionals of one labelled pair for pseudo-likelihood learning
+ *  of the joint weights: one per association node and one per clustering node, each
+ *  with its neighbours on both chains and across the rung clamped to the truth. The
+ *  clusters are the pair's objects with a true association among the candidates,
+ *  with their true motions; a point whose true match is not a candidate is labelled
+ *  with the outlier state and the outlier cluster.
+ *  \param[in] pair a pair with ground truth
+ *  \param[in] model the trained matcher and clustering parts (the joint weights are unused)
+ *  \throws std::invalid_argument for a pair without ground truth.
+ */
+std::vector<crf::NodeConditional>
+jointNodeConditionals (const ScanPair& pair, const JointModel& model);
+
+/** \brief Learns a joint model from labelled pairs: the CRF-Matching part
+ *  (trainCrfMatching), the initial CRF-Clustering on its associations, then the
+ *  kJointWeightCount joint weights together by maximum pseudo-likelihood with L-BFGS
+ *  (learnNodePseudoLikelihood over jointNodeConditionals of every pair), and the
+ *  smallest cluster size (selectMinClusterPoints).
+ *
+ *  \code
+ *  const pcl_crf::joint::JointModel model = pcl_crf::joint::trainJointModel (pcl_crf::loadDataset ("data/default/train"));
+ *  pcl_crf::joint::saveJointModel (model, "joint.model");
+ *  \endcode
+ *  \throws std::invalid_argument for no pairs, pairs without truth or invalid options.
+ */
+JointModel
+trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions& options = {});
+
+/** \brief The grid value of min_cluster_points with the best mean V-measure of
+ *  estimateJoint on \a pairs (ties: the earlier value).
+ *  \throws std::invalid_argument for an empty grid or a value < 1. */
+int
+selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<int>& grid);
+
+/** \brief Learns only the joint weights, given the trained matcher and initial clustering of \a model. */
+Eigen::VectorXd
+learnJointWeights (const std::vector<ScanPair>& pairs, const JointModel& model, double prior_sigma,
+                   const crf::LbfgsOptions& lbfgs = {});
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,87 @@
+#pragma once
+
+#include <pcl_crf/clustering/clustering_model.h>
+#include <pcl_crf/clustering/crf_clustering.h>
+#include <pcl_crf/joint/joint_features.h>
+#include <pcl_crf/joint/ladder_inference.h>
+#include <pcl_crf/matching/matching_model.h>
+
+#include <Eigen/Core>
+
+#include <iosfwd>
+#include <string>
+
+namespace pcl_crf {
+namespace joint {
+
+/** \brief Settings of joint estimation (the runtime ones; a model brings its learned parts). */
+struct JointParameters
+{
+  /** the modified loopy max-product belief propagation. */
+  LadderOptions inference;
+  /** the initial clusters: CRF-Clustering of the first association pass (its
+   *  over-segmentation, merging and iteration settings). */
+  clustering::CrfClusteringParameters initial_clustering;
+  /** rounds of inference → removal of vacuous and ambiguous clusters → inference (≥ 1); default 3. */
+  int max_rounds = 3;
+  /** a cluster with fewer MAP points than this is vacuous and removed [points];
+   *  0 (default): the model's JointModel::min_cluster_points, chosen in training. */
+  int min_cluster_points = 0;
+  /** a cluster whose points' average effective number of clusters (Tipaldi & Ramos,
+   *  eq. 8, on the clustering chain's beliefs) exceeds this is merged into the others;
+   *  > 1, default 1.7. */
+  double max_average_neff = 1.7;
+};
+
+/** \brief \throws std::invalid_argument naming the first setting out of range. */
+void
+validateParameters (const JointParameters& parameters);
+
+/** \brief A trained joint model: the association chain's boosted classifiers and
+ *  passes (a CRF-Matching model: pass 1 gives the static motion and the first
+ *  associations), the CRF-Clustering weights that propose the initial clusters, and
+ *  the kJointWeightCount weights of the joint CRF, learned jointly.
+ *
+ *  \code
+ *  const pcl_crf::joint::JointModel model = pcl_crf::joint::loadJointModel ("data/models/joint.model");
+ *  \endcode
+ */
+struct JointModel
+{
+  matching::CrfMatchingModel matcher;
+  clustering::CrfClusteringModel initial_clustering;
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero (kJointWeightCount);
+  /** σ of the Gaussian prior the joint weights were learned with (informative). */
+  double prior_sigma = 0.0;
+  /** the smallest cluster kept [points] (≥ 1): chosen in training as the value of a
+   *  small grid that gives the best mean V-measure on the training pairs. */
+  int min_cluster_points = 3;
+
+  /** \brief true when every part is trained. */
+  bool
+  isTrained () const;
+};
+
+/** \brief Version of the joint model file. */
+constexpr int kJointModelVersion = 1;
+
+/** \brief Writes the model as text: a header, the joint weights as `name value`
+ *  lines, then the CRF-Clustering and CRF-Matching models in their own formats,
+ *  each between `begin <part>` and `end <part>` lines. Round trips exactly. */
+void
+writeJointModel (const JointModel& model, std::ostream& os);
+
+/** \brief Reads writeJointModel's text. \throws std::runtime_error "<name>: <problem>". */
+JointModel
+readJointModel (std::istream& is, const std::string& name = "joint model");
+
+/** \brief Saves to a file. \throws std::runtime_error when it cannot be written. */
+void
+saveJointModel (const JointModel& model, const std::string& path);
+
+/** \brief Loads from a file. \throws std::runtime_error naming the file and the problem. */
+JointModel
+loadJointModel (const std::string& path);
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,71 @@
+#include <pcl_crf/evaluation/joint_methods.h>
+
+#include <stdexcept>
+
+namespace pcl_crf {
+
+namespace {
+
+class JointMethod : public EvaluationMethod
+{
+public:
+  JointMethod (const joint::JointParameters& parameters, const joint::JointLearningOptions& learning)
+    : parameters_ (parameters), learning_ (learning)
+  {}
+
+  std::string
+  name () const override { return "joint"; }
+
+  bool
+  isLearned () const override { return true; }
+
+  void
+  train (const std::vector<ScanPair>& training_pairs) override
+  {
+    model_ = joint::trainJointModel (training_pairs, learning_);
+  }
+
+  void
+  saveModel (const std::string& path) const override
+  {
+    requireModel ();
+    joint::saveJointModel (model_, path);
+  }
+
+  void
+  loadModel (const std::string& path) override
+  {
+    model_ = joint::loadJointModel (path);
+  }
+
+  Prediction
+  predict (const ScanPair& pair) override
+  {
+    requireModel ();
+    return joint::toPrediction (pair.source,
+                            joint::estimateJoint (pair.source, pair.target, pair.odometry, model_, parameters_));
+  }
+
+private:
+  void
+  requireModel () const
+  {
+    if (!model_.isTrained ())
+      throw std::runtime_error ("joint: no model, train or load one first");
+  }
+
+  joint::JointParameters parameters_;
+  joint::JointLearningOptions learning_;
+  joint::JointModel model_;
+};
+
+}  // namespace
+
+std::unique_ptr<EvaluationMethod>
+makeJointMethod (const joint::JointParameters& parameters, const joint::JointLearningOptions& learning)
+{
+  joint::validateParameters (parameters);
+  return std::make_unique<JointMethod> (parameters, learning);
+}
+
+}  // namespace pcl_crf

@@ -1,0 +1,108 @@
+#include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/matching_chain.h>
+#include <pcl_crf/matching/scan_matching.h>
+
+#include <algorithm>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** Pass 1's associations as states of the joint pass (the outlier state when the
+ *  target point is not a candidate there). */
+std::vector<int>
+initialAssociation (const matching::Candidates& candidates, const std::vector<int>& first_matches)
+{
+  std::vector<int> states (first_matches.size ());
+  for (int i = 0; i < candidates.size (); ++i) {
+    const int c = first_matches[i] == kNoMatch ? -1 : candidates.find (i, first_matches[i]);
+    states[i] = c >= 0 ? c : candidates.count (i);
+  }
+  return states;
+}
+
+/** Gives every point of a cluster that moves relative to the pass's motion (by more
+ *  than the overlap radius at that point) its cluster's motion as hypothesis. */
+void
+clusterHypotheses (const LadderStart& start, const matching::SegmentMotionParameters& parameters,
+                   const matching::ScanShape& source, matching::PassGeometry& pass)
+{
+  const int clusters = static_cast<int> (start.motions.size ());
+  const double radius_squared = parameters.overlap_radius * parameters.overlap_radius;
+  for (int i = 0; i < static_cast<int> (start.cluster.size ()); ++i) {
+    const int l = start.cluster[i];
+    if (l >= clusters)
+      continue;
+    const Eigen::Vector2d h = start.motions[l] * source.points.col (i) - pass.source_current.col (i);
+    if (h.squaredNorm () <= radius_squared)
+      continue;
+    pass.segment_motions.translation.col (i) = h;
+    pass.segment_motions.has_hypothesis[i] = true;
+  }
+}
+
+}  // namespace
+
+AssociationStage
+firstAssociationPass (const Eigen::Matrix2Xd& source, const matching::PreparedTarget& target,
+                      const matching::MotionGuess& guess, const matching::CrfMatchingModel& matcher)
+{
+  AssociationStage stage;
+  stage.source = matching::describeScan (source);
+  const matching::PassResult first = matching::runPass (stage.source, target, guess, guess.T_target_source,
+                                                        matcher.stages.front (), matcher.parameters);
+  stage.first_matches = first.matches;
+  stage.T_first = first.T_estimate;
+  return stage;
+}
+
+LadderStart
+initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const AssociationStage& stage,
+                 const JointModel& model, const clustering::CrfClusteringParameters& parameters,
+                 const Odometry& odometry)
+{
+  LadderStart start;
+  clustering::CrfClusteringParameters settings = parameters;
+  settings.features = model.initial_clustering.features;
+  const clustering::ScanClustering scan =
+      clustering::clusterScan (source, target, stage.first_matches, model.initial_clustering.weights, settings,
+                               &odometry, clustering::UnpairedLabelling::Outlier);
+  start.motions = scan.motions;
+  if (start.motions.empty ())  // nothing associated: one cluster with pass 1's motion
+    start.motions.push_back (stage.T_first);
+  const int outlier = static_cast<int> (start.motions.size ());
+  start.cluster.resize (scan.source_cluster.size ());
+  for (std::size_t i = 0; i < scan.source_cluster.size (); ++i)
+    start.cluster[i] = scan.source_cluster[i] == kOutlierCluster || scan.motions.empty () ? outlier
+                                                                                          : scan.source_cluster[i];
+  return start;
+}
+
+void
+jointPass (AssociationStage& stage, const matching::PreparedTarget& target, const matching::MotionGuess& guess,
+           const matching::CrfMatchingModel& matcher, LadderStart& start)
+{
+  const matching::CandidateParameters& parameters = matcher.parameters.candidates;
+  stage.pass = matching::preparePass (stage.source, target, guess.T_target_source, stage.T_first, parameters);
+  clusterHypotheses (start, parameters.segments, stage.source, stage.pass);
+  stage.pass.candidates = matching::findCandidates (
+      stage.pass.source_current,
+      matching::shapeEmbedding (stage.source.shape, stage.pass.source_current, parameters.shape_position_scale),
+      stage.pass.segment_motions.translation, stage.pass.segment_motions.has_hypothesis, target.index, parameters);
+  const std::size_t last = std::min<std::size_t> (1, matcher.stages.size () - 1);
+  stage.scores = matching::scorePass (matcher.stages[last], stage.source, target.scan, stage.pass);
+  start.association = initialAssociation (stage.pass.candidates, stage.first_matches);
+}
+
+crf::ChainPotentials
+associationPotentials (const AssociationStage& stage, const matching::PreparedTarget& target, const JointModel& model)
+{
+  return matching::matchingChainPotentials (stage.source, target.scan, stage.pass, stage.scores,
+                                            model.weights.head (matching::kCrfWeightCount),
+                                            model.matcher.parameters.residual_scale);
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,153 @@
+#include <pcl_crf/clustering/cluster_merging.h>
+#include <pcl_crf/clustering/ego_cluster.h>
+#include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/joint/joint_estimation.h>
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+[[noreturn]] void
+fail (const std::string& what)
+{
+  throw std::invalid_argument ("[pcl_crf::joint::estimateJoint] " + what);
+}
+
+/** The clusters worth keeping after a round: not ambiguous (Tipaldi & Ramos eq. 8 on
+ *  the local evidence of the points they hold) and not vacuous. Points of a
+ *  removed cluster move to their best kept one. \return true when one was removed. */
+bool
+pruneClusters (const LadderResult& round, const JointParameters& parameters, int min_points, LadderStart& next)
+{
+  const int clusters = static_cast<int> (round.motions.size ());
+  std::vector<int> members;  // points in a real cluster
+  for (int i = 0; i < static_cast<int> (round.cluster.size ()); ++i)
+    if (round.cluster[i] < clusters)
+      members.push_back (i);
+  Eigen::MatrixXd beliefs (clusters, static_cast<Eigen::Index> (members.size ()));
+  std::vector<int> labels (members.size ());
+  for (std::size_t m = 0; m < members.size (); ++m) {
+    beliefs.col (m) = round.cluster_evidence.col (members[m]).head (clusters);
+    labels[m] = round.cluster[members[m]];
+  }
+  std::vector<int> kept = members.empty () ? std::vector<int>{0}
+                                           : clustering::selectClusters (beliefs, labels, parameters.max_average_neff);
+  const std::vector<int> sizes = [&] {
+    std::vector<int> s (static_cast<std::size_t> (clusters), 0);
+    for (int l : labels)
+      ++s[l];
+    return s;
+  }();
+  std::vector<int> solid;
+  for (int l : kept)
+    if (sizes[l] >= min_points)
+      solid.push_back (l);
+  if (solid.empty ())  // never remove every cluster: keep the largest
+    solid.push_back (static_cast<int> (std::max_element (sizes.begin (), sizes.end ()) - sizes.begin ()));
+  if (static_cast<int> (solid.size ()) == clusters)
+    return false;
+  // Renumber: the kept clusters 0 … K'−1, the outlier cluster K'.
+  const int outlier = static_cast<int> (solid.size ());
+  std::vector<int> rank (static_cast<std::size_t> (clusters + 1), -1);
+  for (int k = 0; k < outlier; ++k)
+    rank[solid[k]] = k;
+  next.motions.clear ();
+  for (int l : solid)
+    next.motions.push_back (round.motions[l]);
+  next.association = round.association;
+  next.cluster.assign (round.cluster.size (), outlier);
+  for (std::size_t i = 0; i < round.cluster.size (); ++i) {
+    if (round.cluster[i] >= clusters)
+      continue;
+    int best = -1;  // the most believed kept cluster
+    for (int l : solid)
+      if (best < 0 || round.cluster_beliefs (l, i) > round.cluster_beliefs (best, i))
+        best = l;
+    next.cluster[i] = rank[rank[round.cluster[i]] >= 0 ? round.cluster[i] : best];
+  }
+  return true;
+}
+
+/** Fills the result from the last round: clusters numbered largest first, the
+ *  static one nearest to the odometry. */
+void
+assemble (const LadderResult& round, const matching::Candidates& candidates, const Odometry& odometry,
+          JointResult& result)
+{
+  const int clusters = static_cast<int> (round.motions.size ());
+  const int n = static_cast<int> (round.cluster.size ());
+  std::vector<int> sizes (static_cast<std::size_t> (clusters), 0);
+  for (int c : round.cluster)
+    if (c < clusters)
+      ++sizes[c];
+  std::vector<int> order (static_cast<std::size_t> (clusters));
+  std::iota (order.begin (), order.end (), 0);
+  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
+  std::vector<int> rank (static_cast<std::size_t> (clusters));
+  for (int k = 0; k < clusters; ++k) {
+    rank[order[k]] = k;
+    result.cluster_motions.push_back (round.motions[order[k]]);
+    result.cluster_sizes.push_back (sizes[order[k]]);
+  }
+  result.source_match.assign (static_cast<std::size_t> (n), kNoMatch);
+  result.source_cluster.assign (static_cast<std::size_t> (n), kOutlierCluster);
+  for (int i = 0; i < n; ++i) {
+    if (round.association[i] < candidates.count (i))
+      result.source_match[i] = candidates.target (i, round.association[i]);
+    if (round.cluster[i] < clusters)
+      result.source_cluster[i] = rank[round.cluster[i]];
+    else
+      result.outliers.push_back (i);
+  }
+  result.static_cluster = clustering::selectStaticCluster (result.cluster_motions, odometry);
+  result.T_source_target =
+      result.static_cluster >= 0 ? result.cluster_motions[result.static_cluster].inverse () : odometry.T_source_target;
+}
+
+}  // namespace
+
+JointResult
+estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
+               const JointModel& model, const JointParameters& parameters)
+{
+  if (!model.isTrained ())
+    fail ("the model is not trained (train or load one first)");
+  validateParameters (parameters);
+  if (source.cols () == 0 || target.cols () == 0)
+    fail ("the source and target scans must not be empty");
+  if (!source.allFinite () || !target.allFinite ())
+    fail ("the scans hold NaN or infinite points");
+  const matching::PreparedTarget prepared = matching::prepareTarget (target, model.matcher.parameters.candidates);
+  const matching::MotionGuess guess = matching::MotionGuess::fromOdometry (odometry);
+  AssociationStage stage = firstAssociationPass (source, prepared, guess, model.matcher);
+  LadderStart start = initialClusters (source, target, stage, model, parameters.initial_clustering, odometry);
+  jointPass (stage, prepared, guess, model.matcher, start);
+  const crf::ChainPotentials chain = associationPotentials (stage, prepared, model);
+  const LadderGeometry geometry =
+      makeLadderGeometry (source, target, stage.pass.candidates, model.initial_clustering.features.min_spacing,
+                          model.initial_clustering.features.min_neighbour_distance);
+  const int min_points = parameters.min_cluster_points > 0 ? parameters.min_cluster_points : model.min_cluster_points;
+  JointResult result;
+  result.initial_clusters = static_cast<int> (start.motions.size ());
+  LadderResult round;
+  for (;;) {
+    round = inferLadder (geometry, chain, model.weights, start.motions, start.association, start.cluster,
+                         parameters.inference);
+    ++result.rounds;
+    result.iterations += round.iterations;
+    if (result.rounds >= parameters.max_rounds || !pruneClusters (round, parameters, min_points, start))
+      break;
+  }
+  result.converged = round.converged;
+  assemble (round, stage.pass.candidates, odometry, result);
+  return result;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,164 @@
+#include <pcl_crf/clustering/clustering_features.h>
+#include <pcl_crf/clustering/point_pairs.h>
+#include <pcl_crf/joint/joint_features.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** Index of the association state of point i that stands for target point j (kNoMatch: outlier). */
+inline int
+stateTarget (const matching::Candidates& candidates, int i, int s)
+{
+  return s < candidates.count (i) ? candidates.target (i, s) : kNoMatch;
+}
+
+/** The cluster-distance features log(1 + r² c_k) (CRF-Clustering's local features). */
+inline void
+residualFeatures (double squared_residual, const LadderGeometry& geometry, int i, double& spacing, double& beam)
+{
+  spacing = std::log1p (squared_residual * geometry.inverse_scales (0, i));
+  beam = std::log1p (squared_residual * geometry.inverse_scales (1, i));
+}
+
+/** | ||a − b|| − d |: how much a neighbour distance changes (Eq. (6) of the clustering paper). */
+inline double
+stiffness (const Eigen::Vector2d& a, const Eigen::Vector2d& b, double d)
+{
+  return std::abs ((a - b).norm () - d);
+}
+
+}  // namespace
+
+const std::vector<const char*>&
+jointWeightNames ()
+{
+  static const std::vector<const char*> names = {
+      "association_data_margin", "association_outlier_margin", "association_outlier_bias",
+      "association_sequence", "association_sequence_repeat", "association_sequence_skip",
+      "association_outlier_switch", "association_outlier_run", "association_pairwise_distance",
+      "association_pairwise_translation", "rung_spacing_residual", "rung_beam_residual",
+      "rung_matched_outlier_cluster", "rung_unmatched_cluster", "rung_unmatched_outlier_cluster",
+      "cluster_neighbour", "cluster_weighted_neighbour", "cluster_stiffness", "cluster_outlier_switch",
+      "cluster_outlier_run"};
+  return names;
+}
+
+LadderGeometry
+makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                    const matching::Candidates& candidates, double min_spacing, double min_neighbour_distance)
+{
+  LadderGeometry geometry;
+  geometry.source = source;
+  geometry.target = target;
+  geometry.candidates = candidates;
+  geometry.min_neighbour_distance = min_neighbour_distance;
+  // The scales of CRF-Clustering's local features over every source point: the
+  // pairs (s_i → s_i) only serve to reuse its sampling-distance and beam-spacing code.
+  std::vector<int> all (static_cast<std::size_t> (source.cols ()));
+  std::iota (all.begin (), all.end (), 0);
+  clustering::FeatureOptions options;
+  options.min_spacing = min_spacing;
+  geometry.inverse_scales = clustering::unaryScales (clustering::makePointPairs (source, source, all), options);
+  const Eigen::Index n = source.cols ();
+  geometry.neighbour_distance.resize (std::max<Eigen::Index> (n - 1, 0));
+  for (Eigen::Index i = 0; i + 1 < n; ++i)
+    geometry.neighbour_distance (i) = (source.col (i + 1) - source.col (i)).norm ();
+  return geometry;
+}
+
+void
+rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
+               const Eigen::VectorXd& w, Eigen::MatrixXd& potential)
+{
+  const int count = geometry.candidates.count (i);
+  const int clusters = static_cast<int> (transformed_source.cols ());
+  potential.resize (count + 1, clusters + 1);
+  const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
+  for (int l = 0; l < clusters; ++l) {
+    const double x = transformed_source (0, l), y = transformed_source (1, l);
+    for (int s = 0; s < count; ++s) {  // cluster distance
+      const int j = geometry.candidates.target (i, s);
+      const double dx = x - geometry.target (0, j), dy = y - geometry.target (1, j);
+      const double r2 = dx * dx + dy * dy;
+      potential (s, l) = w (kRungSpacingResidual) * std::log1p (r2 * c_spacing) +
+                         w (kRungBeamResidual) * std::log1p (r2 * c_beam);
+    }
+    potential (count, l) = w (kRungUnmatchedCluster);
+  }
+  potential.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
+  potential (count, clusters) = w (kRungUnmatchedOutlierCluster);
+}
+
+Eigen::VectorXd
+rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::vector<Rigid2d>& motions)
+{
+  Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
+  const int j = stateTarget (geometry.candidates, i, s);
+  const bool outlier_cluster = l == static_cast<int> (motions.size ());
+  if (j == kNoMatch)
+    f (outlier_cluster ? kRungUnmatchedOutlierCluster : kRungUnmatchedCluster) = 1.0;
+  else if (outlier_cluster)
+    f (kRungMatchedOutlierCluster) = 1.0;
+  else {
+    const double r2 = (motions[l] * geometry.source.col (i) - geometry.target.col (j)).squaredNorm ();
+    residualFeatures (r2, geometry, i, f (kRungSpacingResidual), f (kRungBeamResidual));
+  }
+  return f;
+}
+
+void
+clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& moved_here,
+                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& w, Eigen::MatrixXd& potential)
+{
+  const int clusters = static_cast<int> (moved_here.cols ());
+  const double d = geometry.neighbour_distance (i);
+  const double same = w (kClusterNeighbour) + w (kClusterWeightedNeighbour) / std::max (d, geometry.min_neighbour_distance);
+  potential.resize (clusters + 1, clusters + 1);
+  for (int l = 0; l < clusters; ++l) {
+    for (int k = 0; k < clusters; ++k)  // a rigid pair keeps its distance: no stiffness when k = l
+      potential (k, l) = k == l ? same : w (kClusterStiffness) * stiffness (moved_here.col (k), moved_next.col (l), d);
+    potential (clusters, l) = w (kClusterOutlierSwitch);
+    potential (l, clusters) = w (kClusterOutlierSwitch);
+  }
+  potential (clusters, clusters) = w (kClusterOutlierRun);
+}
+
+Eigen::VectorXd
+clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const std::vector<Rigid2d>& motions)
+{
+  Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
+  const int clusters = static_cast<int> (motions.size ());
+  const double d = geometry.neighbour_distance (i);
+  if (k == clusters || l == clusters)
+    f (k == l ? kClusterOutlierRun : kClusterOutlierSwitch) = 1.0;
+  else if (k == l) {
+    f (kClusterNeighbour) = 1.0;
+    f (kClusterWeightedNeighbour) = 1.0 / std::max (d, geometry.min_neighbour_distance);
+  }
+  else
+    f (kClusterStiffness) =
+        stiffness (motions[k] * geometry.source.col (i), motions[l] * geometry.source.col (i + 1), d);
+  return f;
+}
+
+Eigen::Matrix2Xd
+moveByAll (const Eigen::Matrix2Xd& source, const std::vector<Rigid2d>& motions)
+{
+  const Eigen::Index clusters = static_cast<Eigen::Index> (motions.size ());
+  Eigen::Matrix2Xd moved (2, source.cols () * clusters);
+  for (Eigen::Index l = 0; l < clusters; ++l) {
+    const Eigen::Matrix2Xd m = motions[l] * source;
+    for (Eigen::Index i = 0; i < source.cols (); ++i)
+      moved.col (i * clusters + l) = m.col (i);
+  }
+  return moved;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

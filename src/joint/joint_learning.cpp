@@ -1,0 +1,176 @@
+#include <pcl_crf/clustering/prior_selection.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/joint/joint_learning.h>
+#include <pcl_crf/matching/matching_chain.h>
+#include <pcl_crf/matching/matching_learner.h>
+#include <pcl_crf/metrics/pair_scores.h>
+
+#include <map>
+#include <stdexcept>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** The truth of one pair in the joint CRF's states. */
+struct LadderTruth
+{
+  std::vector<int> association;  // per point: candidate of the true match, or the outlier state
+  std::vector<int> cluster;      // per point: cluster index, K for the outlier cluster
+  std::vector<Rigid2d> motions;  // true T_target_source of the K clusters
+};
+
+LadderTruth
+ladderTruth (const ScanPair& pair, const matching::Candidates& candidates)
+{
+  LadderTruth truth;
+  const int n = candidates.size ();
+  truth.association.resize (n);
+  std::map<int, int> cluster_of_object;  // object id → cluster, in order of appearance
+  for (int i = 0; i < n; ++i) {
+    const int c = pair.source_match[i] == kNoMatch ? -1 : candidates.find (i, pair.source_match[i]);
+    truth.association[i] = c >= 0 ? c : candidates.count (i);
+    if (c >= 0 && !cluster_of_object.count (pair.source_object[i])) {
+      const int k = pair.objectIndex (pair.source_object[i]);
+      if (k < 0)
+        throw std::invalid_argument ("[pcl_crf::joint::jointNodeConditionals] pair '" + pair.name +
+                                     "': object " + std::to_string (pair.source_object[i]) + " is not declared");
+      cluster_of_object.emplace (pair.source_object[i], static_cast<int> (truth.motions.size ()));
+      truth.motions.push_back (pair.objects[k].T_target_source);
+    }
+  }
+  const int outlier = static_cast<int> (truth.motions.size ());
+  truth.cluster.resize (n);
+  for (int i = 0; i < n; ++i)
+    truth.cluster[i] =
+        truth.association[i] < candidates.count (i) ? cluster_of_object.at (pair.source_object[i]) : outlier;
+  return truth;
+}
+
+/** Association node i: unary, both chain neighbours clamped, and the rung to its true cluster. */
+crf::NodeConditional
+associationNode (const crf::ChainFeatures& chain, const LadderGeometry& geometry, const LadderTruth& truth, int i)
+{
+  const int n = geometry.size (), states = geometry.associationStates (i);
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero (states, kJointWeightCount);
+  f.leftCols (matching::kUnaryFeatureCount) = chain.unary[i];
+  auto pairwise = f.middleCols (matching::kUnaryFeatureCount, matching::kPairwiseFeatureCount);
+  for (int s = 0; s < states; ++s) {
+    if (i > 0)
+      pairwise.row (s) += chain.pairwise[i - 1].row (
+          crf::ChainFeatures::pairRow (truth.association[i - 1], s, geometry.associationStates (i - 1)));
+    if (i + 1 < n)
+      pairwise.row (s) += chain.pairwise[i].row (crf::ChainFeatures::pairRow (s, truth.association[i + 1], states));
+    f.row (s) += rungFeatures (geometry, i, s, truth.cluster[i], truth.motions).transpose ();
+  }
+  return {f, truth.association[i]};
+}
+
+/** Clustering node i: the rung to its true association and both neighbours clamped. */
+crf::NodeConditional
+clusterNode (const LadderGeometry& geometry, const LadderTruth& truth, int i)
+{
+  const int n = geometry.size (), states = static_cast<int> (truth.motions.size ()) + 1;
+  Eigen::MatrixXd f (states, kJointWeightCount);
+  for (int l = 0; l < states; ++l) {
+    Eigen::VectorXd row = rungFeatures (geometry, i, truth.association[i], l, truth.motions);
+    if (i > 0)
+      row += clusterEdgeFeatures (geometry, i - 1, truth.cluster[i - 1], l, truth.motions);
+    if (i + 1 < n)
+      row += clusterEdgeFeatures (geometry, i, l, truth.cluster[i + 1], truth.motions);
+    f.row (l) = row.transpose ();
+  }
+  return {f, truth.cluster[i]};
+}
+
+}  // namespace
+
+int
+selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<int>& grid)
+{
+  if (grid.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] the grid is empty");
+  int best = grid.front ();
+  double best_score = -1.0;
+  for (int candidate : grid) {
+    if (candidate < 1)
+      throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] grid values must be >= 1");
+    model.min_cluster_points = candidate;
+    double score = 0.0;
+    for (const ScanPair& pair : pairs)
+      score += scorePair (pair, toPrediction (pair.source, estimateJoint (pair.source, pair.target, pair.odometry, model)))
+                   .v_measure;
+    if (score > best_score + 1e-9) {  // ties: the smaller (earlier) value
+      best_score = score;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+std::vector<crf::NodeConditional>
+jointNodeConditionals (const ScanPair& pair, const JointModel& model)
+{
+  if (!pair.hasTruth ())
+    throw std::invalid_argument ("[pcl_crf::joint::jointNodeConditionals] pair '" + pair.name + "' has no ground truth");
+  const matching::PreparedTarget target = matching::prepareTarget (pair.target, model.matcher.parameters.candidates);
+  const matching::MotionGuess guess = matching::MotionGuess::fromOdometry (pair.odometry);
+  AssociationStage stage = firstAssociationPass (pair.source, target, guess, model.matcher);
+  LadderStart start = initialClusters (pair.source, pair.target, stage, model, {}, pair.odometry);
+  jointPass (stage, target, guess, model.matcher, start);  // the association states inference will see
+  const crf::ChainFeatures chain = matching::matchingChainFeatures (stage.source, target.scan, stage.pass, stage.scores,
+                                                                    model.matcher.parameters.residual_scale);
+  const LadderGeometry geometry =
+      makeLadderGeometry (pair.source, pair.target, stage.pass.candidates, model.initial_clustering.features.min_spacing,
+                          model.initial_clustering.features.min_neighbour_distance);
+  const LadderTruth truth = ladderTruth (pair, stage.pass.candidates);
+  std::vector<crf::NodeConditional> nodes;
+  nodes.reserve (2 * static_cast<std::size_t> (geometry.size ()));
+  for (int i = 0; i < geometry.size (); ++i) {
+    nodes.push_back (associationNode (chain, geometry, truth, i));
+    nodes.push_back (clusterNode (geometry, truth, i));
+  }
+  return nodes;
+}
+
+Eigen::VectorXd
+learnJointWeights (const std::vector<ScanPair>& pairs, const JointModel& model, double prior_sigma,
+                   const crf::LbfgsOptions& lbfgs)
+{
+  std::vector<crf::NodeConditional> nodes;
+  for (const ScanPair& pair : pairs) {
+    std::vector<crf::NodeConditional> more = jointNodeConditionals (pair, model);
+    nodes.insert (nodes.end (), std::make_move_iterator (more.begin ()), std::make_move_iterator (more.end ()));
+  }
+  return crf::learnNodePseudoLikelihood (nodes, prior_sigma, lbfgs).x;
+}
+
+JointModel
+trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions& options)
+{
+  if (pairs.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::trainJointModel] no training pair");
+  if (!(options.prior_sigma > 0.0))
+    throw std::invalid_argument ("[pcl_crf::joint::trainJointModel] prior_sigma must be > 0");
+  JointModel model;
+  model.matcher = matching::trainCrfMatching (pairs, options.matching);
+  std::vector<std::vector<int>> associations;  // what the initial clustering will see: pass 1's
+  for (const ScanPair& pair : pairs)
+    associations.push_back (
+        firstAssociationPass (pair.source, matching::prepareTarget (pair.target, options.matching.candidates),
+                              matching::MotionGuess::fromOdometry (pair.odometry), model.matcher)
+            .first_matches);
+  const clustering::PriorSelection selection =
+      clustering::learnWithCrossValidation (pairs, associations, options.clustering);
+  model.initial_clustering.weights = selection.weights;
+  model.initial_clustering.prior_sigma = selection.prior_sigma;
+  model.initial_clustering.features = options.clustering.features;
+  model.prior_sigma = options.prior_sigma;
+  model.weights = learnJointWeights (pairs, model, options.prior_sigma, options.lbfgs);
+  model.min_cluster_points = selectMinClusterPoints (pairs, model, options.min_cluster_points_grid);
+  return model;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,35 @@
+#include <pcl_crf/clustering/scan_segmentation.h>
+#include <pcl_crf/joint/joint_estimation.h>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** segment gap for labelling the outlier cluster's points, as CRF-Clustering's default [m]. */
+constexpr double kBreakDistance = 0.5;
+
+}  // namespace
+
+Prediction
+toPrediction (const Eigen::Matrix2Xd& source, const joint::JointResult& result)
+{
+  Prediction prediction;
+  prediction.source_match = result.source_match;
+  std::vector<int> clustered, labels;
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
+    if (result.source_cluster[i] != kOutlierCluster) {
+      clustered.push_back (static_cast<int> (i));
+      labels.push_back (result.source_cluster[i]);
+    }
+  prediction.source_cluster = clustering::completeLabels (source, clustered, labels, kBreakDistance,
+                                                          result.static_cluster >= 0 ? result.static_cluster
+                                                                                     : kOutlierCluster);
+  prediction.cluster_motions = result.cluster_motions;
+  prediction.static_cluster = result.static_cluster;
+  prediction.T_source_target = result.T_source_target;
+  return prediction;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

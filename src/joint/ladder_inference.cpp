@@ -1,0 +1,348 @@
+#include <pcl_crf/core/rigid_fit.h>
+#include <pcl_crf/joint/ladder_inference.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+using Vector = Eigen::VectorXd;
+
+[[noreturn]] void
+fail (const std::string& what)
+{
+  throw std::invalid_argument ("[pcl_crf::joint::inferLadder] " + what);
+}
+
+/** Shifts a log-message to a maximum of 0 (a message is defined up to a constant). */
+void
+normalise (Vector& message)
+{
+  const double top = message.maxCoeff ();
+  if (std::isfinite (top))
+    message.array () -= top;
+  else
+    message.setZero ();
+}
+
+/** out(t) = max_s in(s) + P(s, t): a message along P's rows to its columns. */
+void
+maxToColumns (const Vector& in, const Eigen::MatrixXd& P, Vector& out)
+{
+  out = (P.colwise () + in).colwise ().maxCoeff ().transpose ();
+  normalise (out);
+}
+
+/** out(s) = max_t in(t) + P(s, t): a message along P's columns to its rows. */
+void
+maxToRows (const Vector& in, const Eigen::MatrixXd& P, Vector& out)
+{
+  out = (P.rowwise () + in.transpose ()).rowwise ().maxCoeff ();
+  normalise (out);
+}
+
+Eigen::Index
+argmax (const Vector& v)
+{
+  Eigen::Index best = 0;
+  v.maxCoeff (&best);
+  return best;
+}
+
+/** Every message of the ladder; index i of a chain message is the edge (i, i + 1). */
+struct Messages
+{
+  std::vector<Vector> association_forward;   // x^a_i → x^a_{i+1}
+  std::vector<Vector> association_backward;  // x^a_{i+1} → x^a_i
+  std::vector<Vector> cluster_forward;       // x^c_i → x^c_{i+1}
+  std::vector<Vector> cluster_backward;      // x^c_{i+1} → x^c_i
+  std::vector<Vector> association_to_cluster;
+  std::vector<Vector> cluster_to_association;
+};
+
+class Ladder
+{
+public:
+  Ladder (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,
+          const std::vector<Rigid2d>& motions, const LadderOptions& options)
+    : g_ (geometry), association_ (association), w_ (weights), options_ (options), motions_ (motions),
+      n_ (geometry.size ()), clusters_ (static_cast<int> (motions.size ()))
+  {
+    messages_ = zeroMessages ();
+  }
+
+  LadderResult
+  run (const std::vector<int>& initial_association, const std::vector<int>& initial_cluster)
+  {
+    seedFits (initial_association, initial_cluster);
+    LadderResult result;
+    while (result.iterations < options_.max_iterations && !result.converged) {
+      ++result.iterations;
+      changes_ = 0;
+      change_ = 0.0;
+      if (options_.schedule == MessageSchedule::Sweep)
+        sweep ();
+      else
+        flood ();
+      for (int l = 0; l < clusters_; ++l)  // eq. 6 from the running sums of the MAP pairs
+        refit (l);
+      result.converged = changes_ == 0 && change_ <= options_.tolerance;
+    }
+    result.association = map_association_;
+    result.cluster = map_cluster_;
+    result.motions = motions_;
+    result.cluster_beliefs.resize (clusters_ + 1, n_);
+    for (int i = 0; i < n_; ++i) {
+      const Vector b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];
+      const Vector p = (b.array () - b.maxCoeff ()).exp ().matrix ();
+      result.cluster_beliefs.col (i) = p / p.sum ();
+    }
+    result.cluster_evidence = localEvidence ();
+    return result;
+  }
+
+private:
+  Eigen::MatrixXd
+  localEvidence ()
+  {
+    Eigen::MatrixXd evidence (clusters_ + 1, n_);
+    for (int i = 0; i < n_; ++i) {
+      rungPotential (g_, i, moved (i), w_, rung_);
+      const Vector r = rung_.row (map_association_[i]).transpose ();
+      const Vector p = (r.array () - r.maxCoeff ()).exp ().matrix ();
+      evidence.col (i) = p / p.sum ();
+    }
+    return evidence;
+  }
+
+  Messages
+  zeroMessages () const
+  {
+    Messages m;
+    for (int i = 0; i + 1 < n_; ++i) {
+      m.association_forward.push_back (Vector::Zero (g_.associationStates (i + 1)));
+      m.association_backward.push_back (Vector::Zero (g_.associationStates (i)));
+      m.cluster_forward.push_back (Vector::Zero (clusters_ + 1));
+      m.cluster_backward.push_back (Vector::Zero (clusters_ + 1));
+    }
+    for (int i = 0; i < n_; ++i) {
+      m.association_to_cluster.push_back (Vector::Zero (clusters_ + 1));
+      m.cluster_to_association.push_back (Vector::Zero (g_.associationStates (i)));
+    }
+    return m;
+  }
+
+  /** Unary plus chain messages into x^a_i (without the rung), optionally leaving one side out. */
+  Vector
+  associationIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
+  {
+    Vector in = association_.unary[i];
+    if (with_left && i > 0)
+      in += m.association_forward[i - 1];
+    if (with_right && i + 1 < n_)
+      in += m.association_backward[i];
+    return in;
+  }
+
+  Vector
+  clusterIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
+  {
+    Vector in = Vector::Zero (clusters_ + 1);
+    if (with_left && i > 0)
+      in += m.cluster_forward[i - 1];
+    if (with_right && i + 1 < n_)
+      in += m.cluster_backward[i];
+    return in;
+  }
+
+  /** T_l s_i for every cluster l (2 x K). */
+  Eigen::Matrix2Xd
+  moved (int i) const
+  {
+    Eigen::Matrix2Xd m (2, clusters_);
+    for (int l = 0; l < clusters_; ++l)
+      m.col (l) = motions_[l] * g_.source.col (i);
+    return m;
+  }
+
+  /** m ← (1 − λ) fresh + λ m (log domain). */
+  void
+  assign (Vector& message, const Vector& fresh)
+  {
+    const Vector next = options_.damping > 0.0 ? Vector ((1.0 - options_.damping) * fresh + options_.damping * message)
+                                               : fresh;
+    change_ = std::max (change_, (next - message).cwiseAbs ().maxCoeff ());
+    message = next;
+  }
+
+  /** Node i's messages read from \a in and written to \a out: the rung, then the
+   *  chain messages to the left and/or right neighbour. */
+  void
+  visit (int i, const Messages& in, Messages& out, bool to_right, bool to_left)
+  {
+    const Eigen::Matrix2Xd here = moved (i);
+    rungPotential (g_, i, here, w_, rung_);  // the features that depend on x^RT, recomputed per visit
+    const Vector a_in = associationIncoming (in, i), c_in = clusterIncoming (in, i);
+    Vector fresh;
+    maxToColumns (a_in, rung_, fresh);
+    assign (out.association_to_cluster[i], fresh);
+    maxToRows (c_in, rung_, fresh);
+    assign (out.cluster_to_association[i], fresh);
+    if (to_right && i + 1 < n_) {
+      maxToColumns (associationIncoming (in, i, true, false) + in.cluster_to_association[i],
+                    association_.pairwise[i], fresh);
+      assign (out.association_forward[i], fresh);
+      clusterEdgePotential (g_, i, here, moved (i + 1), w_, edge_);
+      maxToColumns (clusterIncoming (in, i, true, false) + in.association_to_cluster[i], edge_, fresh);
+      assign (out.cluster_forward[i], fresh);
+    }
+    if (to_left && i > 0) {
+      maxToRows (associationIncoming (in, i, false, true) + in.cluster_to_association[i],
+                 association_.pairwise[i - 1], fresh);
+      assign (out.association_backward[i - 1], fresh);
+      clusterEdgePotential (g_, i - 1, moved (i - 1), here, w_, edge_);
+      maxToRows (clusterIncoming (in, i, false, true) + in.association_to_cluster[i], edge_, fresh);
+      assign (out.cluster_backward[i - 1], fresh);
+    }
+  }
+
+  void
+  sweep ()
+  {
+    for (int i = 0; i < n_; ++i) {
+      visit (i, messages_, messages_, true, false);
+      updateMap (i);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      visit (i, messages_, messages_, false, true);
+      updateMap (i);
+    }
+  }
+
+  void
+  flood ()
+  {
+    Messages next = messages_;
+    for (int i = 0; i < n_; ++i)
+      visit (i, messages_, next, true, true);
+    messages_ = std::move (next);
+    for (int i = 0; i < n_; ++i)
+      updateMap (i);
+  }
+
+  /** The pair (s_i → t_j) of point i in its MAP states, added to (sign +1) or
+   *  removed from (−1) its cluster's running sums. */
+  void
+  accumulate (int i, int state, int cluster, double sign)
+  {
+    if (cluster < 0 || cluster >= clusters_ || state < 0 || state >= g_.candidates.count (i))
+      return;
+    fits_[cluster].add (g_.source.col (i), g_.target.col (g_.candidates.target (i, state)), sign);
+  }
+
+  /** Closed-form refit (eq. 6) of a cluster that still holds enough pairs. */
+  void
+  refit (int cluster)
+  {
+    if (cluster < 0 || cluster >= clusters_)
+      return;
+    const RigidFitAccumulator& fit = fits_[cluster];
+    if (fit.weight () >= options_.min_fit_points - 0.5 && fit.isWellPosed ())
+      motions_[cluster] = fit.solve ();
+  }
+
+  void
+  seedFits (const std::vector<int>& association, const std::vector<int>& cluster)
+  {
+    fits_.assign (static_cast<std::size_t> (clusters_), RigidFitAccumulator ());
+    map_association_ = association;
+    map_cluster_ = cluster;
+    for (int i = 0; i < n_; ++i)  // the initial motions stand until the first refit
+      accumulate (i, association[i], cluster[i], 1.0);
+  }
+
+  /** Node i's MAP states from its beliefs; on a change, its pair moves between the
+   *  running sums in O(1) (the motions are solved from them after the iteration). */
+  void
+  updateMap (int i)
+  {
+    const int a = static_cast<int> (argmax (associationIncoming (messages_, i) + messages_.cluster_to_association[i]));
+    const int c = static_cast<int> (argmax (clusterIncoming (messages_, i) + messages_.association_to_cluster[i]));
+    if (a == map_association_[i] && c == map_cluster_[i])
+      return;
+    ++changes_;
+    accumulate (i, map_association_[i], map_cluster_[i], -1.0);
+    accumulate (i, a, c, 1.0);
+    map_association_[i] = a;
+    map_cluster_[i] = c;
+  }
+
+  const LadderGeometry& g_;
+  const crf::ChainPotentials& association_;
+  const Eigen::VectorXd& w_;
+  const LadderOptions options_;
+  std::vector<Rigid2d> motions_;
+  const int n_;
+  const int clusters_;
+  Messages messages_;
+  std::vector<RigidFitAccumulator> fits_;
+  std::vector<int> map_association_;
+  std::vector<int> map_cluster_;
+  int changes_ = 0;      // MAP changes in this iteration
+  double change_ = 0.0;  // largest message change in this iteration (log domain)
+  Eigen::MatrixXd rung_;  // workspaces
+  Eigen::MatrixXd edge_;
+};
+
+void
+validate (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,
+          const std::vector<Rigid2d>& motions, const std::vector<int>& initial_association,
+          const std::vector<int>& initial_cluster, const LadderOptions& options)
+{
+  const int n = geometry.size ();
+  if (weights.size () != kJointWeightCount || !weights.allFinite ())
+    fail ("expected " + std::to_string (kJointWeightCount) + " finite weights, got " + std::to_string (weights.size ()));
+  if (motions.empty ())
+    fail ("at least one cluster motion is needed");
+  if (geometry.candidates.size () != n || static_cast<int> (association.unary.size ()) != n ||
+      static_cast<int> (association.pairwise.size ()) != std::max (n - 1, 0))
+    fail ("the association chain does not have one node per source point");
+  if (static_cast<int> (initial_association.size ()) != n || static_cast<int> (initial_cluster.size ()) != n)
+    fail ("the initial labels need one entry per source point");
+  for (int i = 0; i < n; ++i) {
+    if (association.unary[i].size () != geometry.associationStates (i))
+      fail ("node " + std::to_string (i) + " has a unary potential of the wrong size");
+    if (initial_association[i] < 0 || initial_association[i] >= geometry.associationStates (i) ||
+        initial_cluster[i] < 0 || initial_cluster[i] > static_cast<int> (motions.size ()))
+      fail ("the initial state of node " + std::to_string (i) + " is out of range");
+  }
+  if (options.max_iterations < 1 || !(options.damping >= 0.0 && options.damping < 1.0) ||
+      options.min_fit_points < 2 || !(options.tolerance >= 0.0))
+    fail ("invalid options: max_iterations >= 1, damping in [0, 1), min_fit_points >= 2, tolerance >= 0");
+}
+
+}  // namespace
+
+LadderResult
+inferLadder (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,
+             const std::vector<Rigid2d>& motions, const std::vector<int>& initial_association,
+             const std::vector<int>& initial_cluster, const LadderOptions& options)
+{
+  validate (geometry, association, weights, motions, initial_association, initial_cluster, options);
+  if (geometry.size () == 0) {
+    LadderResult empty;
+    empty.motions = motions;
+    empty.converged = true;
+    return empty;
+  }
+  Ladder ladder (geometry, association, weights, motions, options);
+  return ladder.run (initial_association, initial_cluster);
+}
+
+}  // namespace joint
+}  // namespace pcl_crf
