@@ -1,0 +1,106 @@
+#pragma once
+
+#include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/impl/crf_matcher.hpp>  // detail::toRigid2d, detail::toMatrix4
+#include <pcl_crf/joint_crf_estimator.h>
+
+#include <pcl/common/transforms.h>
+#include <pcl/console/print.h>
+
+#include <exception>
+
+namespace pcl_crf {
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+JointCRFEstimator<PointSource, PointTarget, Scalar>::JointCRFEstimator ()
+{
+  reg_name_ = "JointCRFEstimator";
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> bool
+JointCRFEstimator<PointSource, PointTarget, Scalar>::loadModel (const std::string& path)
+{
+  try {
+    model_ = joint::loadJointModel (path);
+    return true;
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::loadModel] %s\n", reg_name_.c_str (), error.what ());
+    return false;
+  }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::setOdometry (const Matrix4& T_source_target,
+                                                                 const Eigen::Matrix3d& covariance)
+{
+  odometry_.T_source_target = detail::toRigid2d (T_source_target);
+  odometry_.covariance = covariance;
+  has_odometry_ = true;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::clearResults ()
+{
+  result_ = joint::JointResult ();
+  correspondences_.clear ();
+  clusters_.clear ();
+  cluster_transformations_.clear ();
+  outliers_.clear ();
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::Matrix2Xd& source,
+                                                                  const Eigen::Matrix2Xd& target,
+                                                                  const std::vector<int>& source_index,
+                                                                  const std::vector<int>& target_index)
+{
+  const Rigid2d& T_static = result_.cluster_motions[result_.static_cluster];
+  clusters_.resize (result_.cluster_motions.size ());
+  for (std::size_t i = 0; i < result_.source_cluster.size (); ++i) {
+    const int original = source_index[i];
+    if (result_.source_cluster[i] == kOutlierCluster)
+      outliers_.push_back (original);
+    else
+      clusters_[result_.source_cluster[i]].indices.push_back (original);
+    const int j = result_.source_match[i];
+    if (j != kNoMatch) {
+      const double d2 = (T_static * source.col (i) - target.col (j)).squaredNorm ();
+      correspondences_.emplace_back (original, target_index[j], static_cast<float> (d2));
+    }
+  }
+  for (const Rigid2d& T : result_.cluster_motions)
+    cluster_transformations_.push_back (detail::toMatrix4<Scalar> (T));
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (PointCloudSource& output,
+                                                                           const Matrix4& guess)
+{
+  clearResults ();
+  converged_ = false;
+  std::vector<int> source_index, target_index;
+  const Eigen::Matrix2Xd source = toMatrix2X (*input_, &source_index);
+  const Eigen::Matrix2Xd target = toMatrix2X (*target_, &target_index);
+  Odometry odometry = odometry_;
+  if (!has_odometry_) {
+    odometry.T_source_target = detail::toRigid2d (guess).inverse ();
+    odometry.covariance = guess_covariance_;
+  }
+  try {
+    result_ = joint::estimateJoint (source, target, odometry, model_, parameters_);
+  }
+  catch (const std::exception& error) {
+    PCL_ERROR ("[pcl_crf::%s::computeTransformation] %s\n", reg_name_.c_str (), error.what ());
+    pcl::transformPointCloud (*input_, output, guess);
+    final_transformation_ = transformation_ = guess;
+    return;
+  }
+  if (result_.static_cluster >= 0)
+    storeResults (source, target, source_index, target_index);
+  final_transformation_ = transformation_ = detail::toMatrix4<Scalar> (result_.T_source_target.inverse ());
+  pcl::transformPointCloud (*input_, output, final_transformation_);
+  converged_ = result_.static_cluster >= 0;
+}
+
+}  // namespace pcl_crf

@@ -1,0 +1,141 @@
+#pragma once
+
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/joint/joint_model.h>
+
+#include <pcl/correspondence.h>
+#include <pcl/point_types.h>
+#include <pcl/PointIndices.h>
+#include <pcl/registration/registration.h>
+
+#include <string>
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Joint scan matching, moving-object detection and motion estimation as a
+ *  pcl::Registration (joint::estimateJoint behind PCL's interface).
+ *
+ *  align() associates the source scan with the target scan, clusters the source
+ *  points by their rigid motion and estimates every cluster's motion; the final
+ *  transformation is the static world's motion (it maps source points into the
+ *  target frame, the inverse of the sensor's own motion), and hasConverged() is true
+ *  when a static cluster was found. Points with non-finite x or y are skipped (all
+ *  indices refer to the input clouds). The guess given to align() is the odometry
+ *  (T_target_source) unless setOdometry() was called.
+ *
+ *  \code
+ *  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> joint;
+ *  joint.loadModel ("data/models/joint.model");
+ *  joint.setInputSource (source);
+ *  joint.setInputTarget (target);
+ *  pcl::PointCloud<pcl::PointXYZ> aligned;
+ *  joint.align (aligned, odometry_guess);
+ *  if (joint.hasConverged ())
+ *    for (const pcl::PointIndices& cluster : joint.getClusters ()) ...
+ *  \endcode
+ */
+template <typename PointSource, typename PointTarget, typename Scalar = float>
+class JointCRFEstimator : public pcl::Registration<PointSource, PointTarget, Scalar>
+{
+public:
+  using Base = pcl::Registration<PointSource, PointTarget, Scalar>;
+  using typename Base::Matrix4;
+  using typename Base::PointCloudSource;
+  using Ptr = pcl::shared_ptr<JointCRFEstimator<PointSource, PointTarget, Scalar>>;
+  using ConstPtr = pcl::shared_ptr<const JointCRFEstimator<PointSource, PointTarget, Scalar>>;
+
+  JointCRFEstimator ();
+
+  /** \brief Uses a trained model (joint::trainJointModel or pcl_crf_train --method joint). */
+  void
+  setModel (const joint::JointModel& model) { model_ = model; }
+  const joint::JointModel&
+  getModel () const { return model_; }
+
+  /** \brief Loads a model file; false (and PCL_ERROR naming the problem) when it cannot. */
+  bool
+  loadModel (const std::string& path);
+
+  /** \brief Runtime settings (inference schedule, rounds, cluster removal). */
+  void
+  setParameters (const joint::JointParameters& parameters) { parameters_ = parameters; }
+  const joint::JointParameters&
+  getParameters () const { return parameters_; }
+
+  /** \brief The sensor's measured motion (its pose at the target time in the source
+   *  frame, 4x4) and the covariance of (x [m], y [m], yaw [rad]); used for the
+   *  candidates and to pick the static cluster. Without it align()'s guess is used
+   *  with setGuessCovariance()'s covariance. */
+  void
+  setOdometry (const Matrix4& T_source_target, const Eigen::Matrix3d& covariance);
+
+  /** \brief Covariance of align()'s guess when no odometry is set; default diag(0.25 m², 0.25 m², 0.05 rad²). */
+  void
+  setGuessCovariance (const Eigen::Matrix3d& covariance) { guess_covariance_ = covariance; }
+
+  /** \brief The MAP associations of the last align(): (source index, target index,
+   *  squared distance after the static motion). Outliers have none. */
+  const pcl::Correspondences&
+  getCorrespondences () const { return correspondences_; }
+
+  /** \brief The clusters of the last align(), largest first (outliers excluded). */
+  const std::vector<pcl::PointIndices>&
+  getClusters () const { return clusters_; }
+
+  /** \brief Each cluster's motion, mapping its source points into the target frame. */
+  const std::vector<Matrix4, Eigen::aligned_allocator<Matrix4>>&
+  getClusterTransformations () const { return cluster_transformations_; }
+
+  /** \brief Index in getClusters () of the static world, or −1. */
+  int
+  getStaticCluster () const { return result_.static_cluster; }
+
+  /** \brief Source points in the outlier cluster. */
+  const pcl::Indices&
+  getOutliers () const { return outliers_; }
+
+  /** \brief Everything the last align() found, in the core's frame-explicit form
+   *  (indices into the finite points of the source cloud). */
+  const joint::JointResult&
+  getResult () const { return result_; }
+
+protected:
+  void
+  computeTransformation (PointCloudSource& output, const Matrix4& guess) override;
+
+  using Base::converged_;
+  using Base::final_transformation_;
+  using Base::input_;
+  using Base::reg_name_;
+  using Base::target_;
+  using Base::transformation_;
+
+private:
+  void
+  clearResults ();
+  void
+  storeResults (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<int>& source_index,
+                const std::vector<int>& target_index);
+
+  joint::JointModel model_;
+  joint::JointParameters parameters_;
+  bool has_odometry_ = false;
+  Odometry odometry_;
+  Eigen::Matrix3d guess_covariance_ = Eigen::Vector3d (0.25, 0.25, 0.05).asDiagonal ();
+  joint::JointResult result_;
+  pcl::Correspondences correspondences_;
+  std::vector<pcl::PointIndices> clusters_;
+  std::vector<Matrix4, Eigen::aligned_allocator<Matrix4>> cluster_transformations_;
+  pcl::Indices outliers_;
+};
+
+}  // namespace pcl_crf
+
+#if !defined(PCL_NO_PRECOMPILE)
+extern template class pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ, float>;
+extern template class pcl_crf::JointCRFEstimator<pcl::PointXYZI, pcl::PointXYZI, float>;
+extern template class pcl_crf::JointCRFEstimator<pcl::PointXYZL, pcl::PointXYZL, float>;
+#else
+#include <pcl_crf/impl/joint_crf_estimator.hpp>
+#endif

@@ -1,0 +1,137 @@
+// The joint model end to end: the shipped model on shipped pairs, the PCL adapter, bad input.
+#include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/joint_crf_estimator.h>
+#include <pcl_crf/metrics/pair_scores.h>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace {
+
+using namespace pcl_crf;
+
+const std::string kModelPath = std::string (PCL_CRF_SOURCE_DIR) + "/data/models/joint.model";
+const std::string kTestDir = std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test/";
+
+const joint::JointModel&
+shippedModel ()
+{
+  static const joint::JointModel model = joint::loadJointModel (kModelPath);
+  return model;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+toCloud (const Eigen::Matrix2Xd& xy)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud (new pcl::PointCloud<pcl::PointXYZ>);
+  for (Eigen::Index i = 0; i < xy.cols (); ++i)
+    cloud->push_back (pcl::PointXYZ (static_cast<float> (xy (0, i)), static_cast<float> (xy (1, i)), 0.0f));
+  return cloud;
+}
+
+TEST (JointModelFile, ShippedModelRoundTripsExactly)
+{
+  std::ostringstream first, second;
+  joint::writeJointModel (shippedModel (), first);
+  std::istringstream text (first.str ());
+  joint::writeJointModel (joint::readJointModel (text), second);
+  EXPECT_EQ (first.str (), second.str ());
+  EXPECT_TRUE (shippedModel ().isTrained ());
+}
+
+TEST (JointEstimation, RecoversEgoMotionAndAMovingCarOnShippedPairs)
+{
+  // pair_0016: a car moving 3.8 m against the static world; pair_0019: a cyclist.
+  for (const char* name : {"pair_0016", "pair_0019"}) {
+    SCOPED_TRACE (name);
+    const ScanPair pair = loadScanPair (kTestDir + name);
+    const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
+    const PairScores scores = scorePair (pair, joint::toPrediction (pair.source, r));
+    EXPECT_LT (scores.ego_translation_error, 0.03);  // [m]
+    EXPECT_LT (scores.ego_rotation_error, 0.005);    // [rad]
+    EXPECT_GT (scores.association_accuracy, 0.85);
+    EXPECT_GT (scores.cluster_accuracy, 0.9);
+    EXPECT_GE (r.cluster_motions.size (), 2u);  // the mover has a cluster of its own
+    EXPECT_EQ (r.source_match.size (), static_cast<std::size_t> (pair.source.cols ()));
+  }
+}
+
+TEST (JointEstimation, RejectsBadInput)
+{
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  EXPECT_THROW (joint::estimateJoint (Eigen::Matrix2Xd (2, 0), pair.target, pair.odometry, shippedModel ()),
+                std::invalid_argument);
+  Eigen::Matrix2Xd nan = pair.source;
+  nan (0, 3) = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (joint::estimateJoint (nan, pair.target, pair.odometry, shippedModel ()), std::invalid_argument);
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, pair.odometry, joint::JointModel ()),
+                std::invalid_argument);
+  joint::JointParameters bad;
+  bad.max_rounds = 0;
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), bad),
+                std::invalid_argument);
+}
+
+TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
+{
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  ASSERT_TRUE (estimator.loadModel (kModelPath));
+  auto source = toCloud (pair.source);
+  (*source)[5].x = std::numeric_limits<float>::quiet_NaN ();  // skipped, indices still refer to the cloud
+  estimator.setInputSource (source);
+  estimator.setInputTarget (toCloud (pair.target));
+  Eigen::Matrix4f odometry = Eigen::Matrix4f::Identity ();
+  odometry.topLeftCorner<2, 2> () = pair.odometry.T_source_target.linear ().cast<float> ();
+  odometry.block<2, 1> (0, 3) = pair.odometry.T_source_target.translation ().cast<float> ();
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+  // the final transformation is the static world's motion: the inverse of the true ego motion
+  const Rigid2d truth = pair.objects[pair.objectIndex (pair.staticObjectId ())].T_target_source;
+  const Eigen::Matrix4f T = estimator.getFinalTransformation ();
+  EXPECT_NEAR (T (0, 3), truth.translation ().x (), 0.03);
+  EXPECT_NEAR (T (1, 3), truth.translation ().y (), 0.03);
+  EXPECT_EQ (aligned.size (), source->size ());
+  // clusters largest first, disjoint, never holding the NaN point
+  const auto& clusters = estimator.getClusters ();
+  ASSERT_GE (clusters.size (), 2u);
+  std::size_t total = estimator.getOutliers ().size ();
+  for (std::size_t k = 0; k < clusters.size (); ++k) {
+    total += clusters[k].indices.size ();
+    if (k > 0)
+      EXPECT_GE (clusters[k - 1].indices.size (), clusters[k].indices.size ());
+    for (int index : clusters[k].indices)
+      EXPECT_NE (index, 5);
+  }
+  EXPECT_EQ (total, source->size () - 1);
+  EXPECT_EQ (estimator.getClusterTransformations ().size (), clusters.size ());
+  EXPECT_GE (estimator.getStaticCluster (), 0);
+  for (const pcl::Correspondence& c : estimator.getCorrespondences ())
+    EXPECT_NE (c.index_query, 5);
+  EXPECT_GT (estimator.getCorrespondences ().size (), source->size () / 2);
+}
+
+TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
+{
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  EXPECT_FALSE (estimator.loadModel ("/nonexistent/joint.model"));
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);  // no clouds: PCL reports it
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setInputSource (pcl::PointCloud<pcl::PointXYZ>::Ptr (new pcl::PointCloud<pcl::PointXYZ>));
+  estimator.setInputTarget (toCloud (Eigen::Matrix2Xd::Random (2, 10)));
+  estimator.align (aligned);  // untrained model and empty source
+  EXPECT_FALSE (estimator.hasConverged ());
+  EXPECT_TRUE (estimator.getClusters ().empty ());
+}
+
+}  // namespace
