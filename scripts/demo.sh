@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=build/apps
-methods=${PCL_CRF_DEMO_METHODS:-icp,crf-matching,kmeans,cbd,crf-t}
+methods=${PCL_CRF_DEMO_METHODS:-icp,crf-matching,kmeans,cbd,crf-t,joint}
 
 echo "== simulating 5 urban scan pairs with moving objects into build/demo_pairs"
 rm -rf build/demo_pairs

@@ -73,24 +73,30 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
 }
 
 void
+rungClusterColumn (const LadderGeometry& geometry, int i, const Eigen::Vector2d& moved, const Eigen::VectorXd& w,
+                   int l, Eigen::MatrixXd& potential)
+{
+  const int count = geometry.candidates.count (i);
+  const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
+  for (int s = 0; s < count; ++s) {  // cluster distance
+    const int j = geometry.candidates.target (i, s);
+    const double dx = moved.x () - geometry.target (0, j), dy = moved.y () - geometry.target (1, j);
+    const double r2 = dx * dx + dy * dy;
+    potential (s, l) =
+        w (kRungSpacingResidual) * std::log1p (r2 * c_spacing) + w (kRungBeamResidual) * std::log1p (r2 * c_beam);
+  }
+  potential (count, l) = w (kRungUnmatchedCluster);
+}
+
+void
 rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
                const Eigen::VectorXd& w, Eigen::MatrixXd& potential)
 {
   const int count = geometry.candidates.count (i);
   const int clusters = static_cast<int> (transformed_source.cols ());
   potential.resize (count + 1, clusters + 1);
-  const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
-  for (int l = 0; l < clusters; ++l) {
-    const double x = transformed_source (0, l), y = transformed_source (1, l);
-    for (int s = 0; s < count; ++s) {  // cluster distance
-      const int j = geometry.candidates.target (i, s);
-      const double dx = x - geometry.target (0, j), dy = y - geometry.target (1, j);
-      const double r2 = dx * dx + dy * dy;
-      potential (s, l) = w (kRungSpacingResidual) * std::log1p (r2 * c_spacing) +
-                         w (kRungBeamResidual) * std::log1p (r2 * c_beam);
-    }
-    potential (count, l) = w (kRungUnmatchedCluster);
-  }
+  for (int l = 0; l < clusters; ++l)
+    rungClusterColumn (geometry, i, transformed_source.col (l), w, l, potential);
   potential.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
   potential (count, clusters) = w (kRungUnmatchedOutlierCluster);
 }

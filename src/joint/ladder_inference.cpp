@@ -13,6 +13,11 @@ namespace {
 
 using Vector = Eigen::VectorXd;
 
+/** The most states a node may have (association candidates + 1, clusters + 1): node
+ *  temporaries live on the stack, so a visit allocates nothing. */
+constexpr int kMaxStates = 64;
+using Small = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxStates, 1>;
+
 [[noreturn]] void
 fail (const std::string& what)
 {
@@ -21,7 +26,7 @@ fail (const std::string& what)
 
 /** Shifts a log-message to a maximum of 0 (a message is defined up to a constant). */
 void
-normalise (Vector& message)
+normalise (Small& message)
 {
   const double top = message.maxCoeff ();
   if (std::isfinite (top))
@@ -32,22 +37,26 @@ normalise (Vector& message)
 
 /** out(t) = max_s in(s) + P(s, t): a message along P's rows to its columns. */
 void
-maxToColumns (const Vector& in, const Eigen::MatrixXd& P, Vector& out)
+maxToColumns (const Small& in, const Eigen::MatrixXd& P, Small& out)
 {
-  out = (P.colwise () + in).colwise ().maxCoeff ().transpose ();
+  out.resize (P.cols ());
+  for (Eigen::Index t = 0; t < P.cols (); ++t)
+    out (t) = (P.col (t) + in).maxCoeff ();
   normalise (out);
 }
 
 /** out(s) = max_t in(t) + P(s, t): a message along P's columns to its rows. */
 void
-maxToRows (const Vector& in, const Eigen::MatrixXd& P, Vector& out)
+maxToRows (const Small& in, const Eigen::MatrixXd& P, Small& out)
 {
-  out = (P.rowwise () + in.transpose ()).rowwise ().maxCoeff ();
+  out = P.col (0).array () + in (0);
+  for (Eigen::Index t = 1; t < P.cols (); ++t)
+    out = out.cwiseMax (P.col (t) + Small::Constant (P.rows (), in (t)));
   normalise (out);
 }
 
 Eigen::Index
-argmax (const Vector& v)
+argmax (const Small& v)
 {
   Eigen::Index best = 0;
   v.maxCoeff (&best);
@@ -85,6 +94,7 @@ public:
       ++result.iterations;
       changes_ = 0;
       change_ = 0.0;
+      computeMotionPotentials ();
       if (options_.schedule == MessageSchedule::Sweep)
         sweep ();
       else
@@ -98,8 +108,8 @@ public:
     result.motions = motions_;
     result.cluster_beliefs.resize (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
-      const Vector b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];
-      const Vector p = (b.array () - b.maxCoeff ()).exp ().matrix ();
+      const Small b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];
+      const Small p = (b.array () - b.maxCoeff ()).exp ().matrix ();
       result.cluster_beliefs.col (i) = p / p.sum ();
     }
     result.cluster_evidence = localEvidence ();
@@ -113,11 +123,20 @@ private:
     Eigen::MatrixXd evidence (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
       rungPotential (g_, i, moved (i), w_, rung_);
-      const Vector r = rung_.row (map_association_[i]).transpose ();
-      const Vector p = (r.array () - r.maxCoeff ()).exp ().matrix ();
+      const Small r = evidenceOf (i);
+      const Small p = (r.array () - r.maxCoeff ()).exp ().matrix ();
       evidence.col (i) = p / p.sum ();
     }
     return evidence;
+  }
+
+  /** The local evidence of every cluster at point i from rung_. */
+  Small
+  evidenceOf (int i) const
+  {
+    if (options_.evidence == ClusterEvidence::MapAssociation)
+      return rung_.row (map_association_[i]).transpose ();
+    return (rung_.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
   }
 
   Messages
@@ -138,10 +157,10 @@ private:
   }
 
   /** Unary plus chain messages into x^a_i (without the rung), optionally leaving one side out. */
-  Vector
+  Small
   associationIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
   {
-    Vector in = association_.unary[i];
+    Small in = association_.unary[i];
     if (with_left && i > 0)
       in += m.association_forward[i - 1];
     if (with_right && i + 1 < n_)
@@ -149,10 +168,10 @@ private:
     return in;
   }
 
-  Vector
+  Small
   clusterIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
   {
-    Vector in = Vector::Zero (clusters_ + 1);
+    Small in = Small::Zero (clusters_ + 1);
     if (with_left && i > 0)
       in += m.cluster_forward[i - 1];
     if (with_right && i + 1 < n_)
@@ -170,14 +189,47 @@ private:
     return m;
   }
 
+  /** The rung and clustering-edge potentials under the current motions (they depend
+   *  on x^RT; the motions change only between iterations, so every visit of this
+   *  iteration sees the same values). */
+  void
+  computeMotionPotentials ()
+  {
+    const bool first = rungs_.empty ();
+    std::vector<int> changed;  // clusters whose motion moved since the potentials were computed
+    for (int l = 0; l < clusters_; ++l)
+      if (first || motions_computed_[l].matrix () != motions_[l].matrix ())
+        changed.push_back (l);
+    if (changed.empty ())
+      return;
+    rungs_.resize (static_cast<std::size_t> (n_));
+    edges_.resize (static_cast<std::size_t> (std::max (n_ - 1, 0)));
+    Eigen::Matrix2Xd here = moved (0), next;
+    for (int i = 0; i < n_; ++i) {
+      if (first)
+        rungPotential (g_, i, here, w_, rungs_[i]);
+      else
+        for (int l : changed)
+          rungClusterColumn (g_, i, here.col (l), w_, l, rungs_[i]);
+      if (i + 1 < n_) {
+        next = moved (i + 1);
+        clusterEdgePotential (g_, i, here, next, w_, edges_[i]);
+        here.swap (next);
+      }
+    }
+    motions_computed_ = motions_;
+  }
+
   /** m ← (1 − λ) fresh + λ m (log domain). */
   void
-  assign (Vector& message, const Vector& fresh)
+  assign (Vector& message, const Small& fresh)
   {
-    const Vector next = options_.damping > 0.0 ? Vector ((1.0 - options_.damping) * fresh + options_.damping * message)
-                                               : fresh;
-    change_ = std::max (change_, (next - message).cwiseAbs ().maxCoeff ());
-    message = next;
+    const double keep = options_.damping;
+    for (Eigen::Index k = 0; k < fresh.size (); ++k) {
+      const double next = (1.0 - keep) * fresh (k) + keep * message (k);
+      change_ = std::max (change_, std::abs (next - message (k)));
+      message (k) = next;
+    }
   }
 
   /** Node i's messages read from \a in and written to \a out: the rung, then the
@@ -185,28 +237,25 @@ private:
   void
   visit (int i, const Messages& in, Messages& out, bool to_right, bool to_left)
   {
-    const Eigen::Matrix2Xd here = moved (i);
-    rungPotential (g_, i, here, w_, rung_);  // the features that depend on x^RT, recomputed per visit
-    const Vector a_in = associationIncoming (in, i), c_in = clusterIncoming (in, i);
-    Vector fresh;
-    maxToColumns (a_in, rung_, fresh);
+    const Eigen::MatrixXd& rung = rungs_[i];
+    const Small a_in = associationIncoming (in, i), c_in = clusterIncoming (in, i);
+    Small fresh;
+    maxToColumns (a_in, rung, fresh);
     assign (out.association_to_cluster[i], fresh);
-    maxToRows (c_in, rung_, fresh);
+    maxToRows (c_in, rung, fresh);
     assign (out.cluster_to_association[i], fresh);
     if (to_right && i + 1 < n_) {
-      maxToColumns (associationIncoming (in, i, true, false) + in.cluster_to_association[i],
+      maxToColumns (a_in - Small (in.association_backward[i]) + in.cluster_to_association[i],
                     association_.pairwise[i], fresh);
       assign (out.association_forward[i], fresh);
-      clusterEdgePotential (g_, i, here, moved (i + 1), w_, edge_);
-      maxToColumns (clusterIncoming (in, i, true, false) + in.association_to_cluster[i], edge_, fresh);
+      maxToColumns (c_in - Small (in.cluster_backward[i]) + in.association_to_cluster[i], edges_[i], fresh);
       assign (out.cluster_forward[i], fresh);
     }
     if (to_left && i > 0) {
-      maxToRows (associationIncoming (in, i, false, true) + in.cluster_to_association[i],
+      maxToRows (a_in - Small (in.association_forward[i - 1]) + in.cluster_to_association[i],
                  association_.pairwise[i - 1], fresh);
       assign (out.association_backward[i - 1], fresh);
-      clusterEdgePotential (g_, i - 1, moved (i - 1), here, w_, edge_);
-      maxToRows (clusterIncoming (in, i, false, true) + in.association_to_cluster[i], edge_, fresh);
+      maxToRows (c_in - Small (in.cluster_forward[i - 1]) + in.association_to_cluster[i], edges_[i - 1], fresh);
       assign (out.cluster_backward[i - 1], fresh);
     }
   }
@@ -295,8 +344,10 @@ private:
   std::vector<int> map_cluster_;
   int changes_ = 0;      // MAP changes in this iteration
   double change_ = 0.0;  // largest message change in this iteration (log domain)
-  Eigen::MatrixXd rung_;  // workspaces
-  Eigen::MatrixXd edge_;
+  std::vector<Eigen::MatrixXd> rungs_;  // S_i x (K + 1) per point
+  std::vector<Eigen::MatrixXd> edges_;  // (K + 1) x (K + 1) per chain edge
+  std::vector<Rigid2d> motions_computed_;  // the motions rungs_ and edges_ hold
+  Eigen::MatrixXd rung_;  // workspace
 };
 
 void
@@ -309,6 +360,8 @@ validate (const LadderGeometry& geometry, const crf::ChainPotentials& associatio
     fail ("expected " + std::to_string (kJointWeightCount) + " finite weights, got " + std::to_string (weights.size ()));
   if (motions.empty ())
     fail ("at least one cluster motion is needed");
+  if (static_cast<int> (motions.size ()) + 1 > kMaxStates)
+    fail ("at most " + std::to_string (kMaxStates - 1) + " clusters are supported");
   if (geometry.candidates.size () != n || static_cast<int> (association.unary.size ()) != n ||
       static_cast<int> (association.pairwise.size ()) != std::max (n - 1, 0))
     fail ("the association chain does not have one node per source point");
@@ -317,6 +370,8 @@ validate (const LadderGeometry& geometry, const crf::ChainPotentials& associatio
   for (int i = 0; i < n; ++i) {
     if (association.unary[i].size () != geometry.associationStates (i))
       fail ("node " + std::to_string (i) + " has a unary potential of the wrong size");
+    if (geometry.associationStates (i) > kMaxStates)
+      fail ("node " + std::to_string (i) + " has more than " + std::to_string (kMaxStates - 1) + " candidates");
     if (initial_association[i] < 0 || initial_association[i] >= geometry.associationStates (i) ||
         initial_cluster[i] < 0 || initial_cluster[i] > static_cast<int> (motions.size ()))
       fail ("the initial state of node " + std::to_string (i) + " is out of range");

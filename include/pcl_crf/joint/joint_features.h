@@ -94,6 +94,12 @@ void
 rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
                const Eigen::VectorXd& weights, Eigen::MatrixXd& potential);
 
+/** \brief Column l (a real cluster) of rungPotential, for the point moved by T_l;
+ *  \a potential must already have its size. */
+void
+rungClusterColumn (const LadderGeometry& geometry, int i, const Eigen::Vector2d& moved, const Eigen::VectorXd& weights,
+                   int l, Eigen::MatrixXd& potential);
+
 /** \brief Rung features of point i in states (s, l), kJointWeightCount wide (zeros outside
  *  the rung block). \param[in] motions the K cluster motions T_target_source */
 Eigen::VectorXd

@@ -29,6 +29,17 @@ enum class MessageSchedule
   Sweep
 };
 
+/** \brief What LadderResult::cluster_evidence measures at a point. */
+enum class ClusterEvidence
+{
+  /** the rung potential at the point's MAP association state. */
+  MapAssociation,
+  /** the best association under each cluster: max_s unary(s) + rung(s, l), so that a
+   *  cluster fitted to a few wrong associations competes with the clusters that
+   *  explain the same points through other candidates. */
+  BestAssociation
+};
+
 /** \brief Settings of the modified loopy max-product belief propagation. */
 struct LadderOptions
 {
@@ -39,8 +50,10 @@ struct LadderOptions
   /** fraction of the previous message kept, log domain, in [0, 1); default 0. */
   double damping = 0.0;
   /** converged when an iteration changes no MAP state and no log-message entry by
-   *  more than this [nats], ≥ 0; default 1e-3. */
-  double tolerance = 1e-3;
+   *  more than this [nats], ≥ 0; default 0.1. */
+  double tolerance = 0.1;
+  /** what cluster_evidence measures; default ClusterEvidence::BestAssociation. */
+  ClusterEvidence evidence = ClusterEvidence::BestAssociation;
   /** a cluster is refitted only while its MAP pairs weigh at least this [pairs], ≥ 2; default 3. */
   int min_fit_points = 3;
 };
@@ -56,9 +69,9 @@ struct LadderResult
   std::vector<Rigid2d> motions;
   /** (K + 1) x n: normalised max-marginal beliefs of the clustering chain. */
   Eigen::MatrixXd cluster_beliefs;
-  /** (K + 1) x n: how well each cluster alone explains point i's MAP association,
-   *  p(l) ∝ exp(rung potential (MAP state, l)) under the final motions (the local
-   *  evidence of CRF-Clustering's merge test: two copies of one motion share it). */
+  /** (K + 1) x n: how well each cluster alone explains point i under the final
+   *  motions, p(l) ∝ exp(evidence), see ClusterEvidence (the local evidence of
+   *  CRF-Clustering's merge test: two copies of one motion share it). */
   Eigen::MatrixXd cluster_evidence;
   int iterations = 0;
   /** true when an iteration changed no MAP state and no message (LadderOptions::tolerance). */
