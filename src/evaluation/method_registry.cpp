@@ -1,6 +1,7 @@
 #include <pcl_crf/evaluation/clustering_methods.h>
 #include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/evaluation/method.h>
+#include <pcl_crf/evaluation/pipeline_methods.h>
 
 #include <functional>
 #include <stdexcept>
@@ -20,6 +21,10 @@ registry ()
       {"kmeans", [] (const MethodSettings& settings) { return makeKMeansMethod (settings.cluster_count); }},
       {"cbd", [] (const MethodSettings&) { return makeConsistencyMethod (); }},
       {"crf-t", [] (const MethodSettings&) { return makeCrfClusteringTrueAssociationsMethod (); }},
+      {"icp+kmeans", [] (const MethodSettings& settings) { return makeIcpKMeansMethod (settings.cluster_count); }},
+      {"crf-matching+kmeans",
+       [] (const MethodSettings& settings) { return makeCrfMatchingKMeansMethod (settings.cluster_count); }},
+      {"crf-m", [] (const MethodSettings&) { return makeCrfMMethod (); }},
   };
   return methods;
 }
