@@ -1,5 +1,5 @@
 // The pipeline methods of the joint paper's comparison ("icp+kmeans",
-// "crf-matching+kmeans", "crf-m") and their composite model files.
+// "crf-matching+kmeans", "crf-m"), their composite model files and leave-one-out.
 
 #include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/evaluation/clustering_methods.h>
@@ -295,6 +295,88 @@ TEST_F (PipelineMethods, CorruptOrTruncatedCompositeModelIsAClearError)
   // Nothing to save before training: an error, and no file.
   EXPECT_THROW (makeCrfMMethod ()->saveModel (file ("untrained.model")), std::runtime_error);
   EXPECT_FALSE (fs::exists (file ("untrained.model")));
+}
+
+/** A learned method that remembers what it was trained on. */
+class RecordingMethod : public EvaluationMethod
+{
+public:
+  explicit RecordingMethod (bool learned, std::vector<std::vector<std::string>>* trained)
+    : learned_ (learned), trained_ (trained)
+  {}
+
+  std::string
+  name () const override { return "recording"; }
+
+  bool
+  isLearned () const override { return learned_; }
+
+  void
+  train (const std::vector<ScanPair>& pairs) override
+  {
+    trained_->emplace_back ();
+    for (const ScanPair& pair : pairs)
+      trained_->back ().push_back (pair.name);
+  }
+
+  Prediction
+  predict (const ScanPair& pair) override
+  {
+    Prediction prediction;
+    prediction.source_match = pair.source_match;
+    prediction.source_cluster.assign (pair.source_match.size (), 0);
+    prediction.cluster_motions = {pair.objects.front ().T_target_source};
+    prediction.static_cluster = 0;
+    prediction.T_source_target = pair.odometry.T_source_target;
+    return prediction;
+  }
+
+private:
+  bool learned_;
+  std::vector<std::vector<std::string>>* trained_;
+};
+
+TEST (LeaveOneOut, TrainsAFreshMethodOnEveryOtherPairPerFold)
+{
+  std::vector<ScanPair> pairs;
+  for (const char* name : {"a", "b", "c", "d"}) {
+    pairs.push_back (test::staticRoomPair (makeRigid2d (0.2, 0.0, 0.01), Rigid2d::Identity (), 0.5));
+    pairs.back ().name = name;
+  }
+  std::vector<std::vector<std::string>> trained;
+  int made = 0;
+  std::vector<std::string> progress;
+  const MethodEvaluation evaluation = evaluateLeaveOneOut (
+      [&] { return ++made, std::make_unique<RecordingMethod> (true, &trained); }, pairs, 2, {},
+      [&progress] (const FoldStatus& fold) {
+        progress.push_back (std::to_string (fold.fold) + "/" + std::to_string (fold.folds) + " " + fold.held_out + " " +
+                            std::to_string (fold.training_pairs) + (fold.finished ? " done" : ""));
+      });
+  EXPECT_EQ (made, 2);
+  ASSERT_EQ (trained.size (), 2u);
+  EXPECT_EQ (trained[0], (std::vector<std::string>{"b", "c", "d"}));
+  EXPECT_EQ (trained[1], (std::vector<std::string>{"a", "c", "d"}));
+  EXPECT_EQ (progress, (std::vector<std::string>{"1/2 a 3", "1/2 a 3 done", "2/2 b 3", "2/2 b 3 done"}));
+  EXPECT_EQ (evaluation.method, "recording");
+  EXPECT_EQ (evaluation.pair_names, (std::vector<std::string>{"a", "b"}));
+  ASSERT_EQ (evaluation.scores.size (), 2u);
+  EXPECT_DOUBLE_EQ (evaluation.scores[1].association_accuracy, 1.0);
+
+  // A method that learns nothing is built once and never trained; 0 holds out every pair.
+  trained.clear ();
+  made = 0;
+  const MethodEvaluation fixed = evaluateLeaveOneOut (
+      [&] { return ++made, std::make_unique<RecordingMethod> (false, &trained); }, pairs);
+  EXPECT_EQ (made, 1);
+  EXPECT_TRUE (trained.empty ());
+  EXPECT_EQ (fixed.scores.size (), 4u);
+  try {
+    evaluateLeaveOneOut ([&] { return std::make_unique<RecordingMethod> (true, &trained); }, {pairs.front ()});
+    ADD_FAILURE () << "no exception";
+  }
+  catch (const std::invalid_argument& error) {
+    EXPECT_NE (std::string (error.what ()).find ("at least 2 pairs"), std::string::npos) << error.what ();
+  }
 }
 
 }  // namespace
