@@ -12,6 +12,7 @@
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -34,6 +35,7 @@ struct EvalArguments
   double tolerance = 0.1;
   int max_pairs = 0;
   int clusters = 0;
+  bool leave_one_out = false;
   bool quiet = false;
 };
 
@@ -54,7 +56,10 @@ printHelp (const char* program)
   print_info ("  --output FILE         write the csv/json/table there instead of stdout\n");
   print_info ("  --save-predictions D  write every pair's prediction to D/<method>/<pair>/\n");
   print_info ("  --tolerance M         association tolerance [m] (default: 0.1)\n");
-  print_info ("  --max-pairs N         evaluate the first N pairs only (default: all)\n");
+  print_info ("  --leave-one-out       for each pair: train every learned method on all the other pairs of\n"
+              "                        DATASET_DIR, then score it on that pair (no --train / --models)\n");
+  print_info ("  --max-pairs N         evaluate the first N pairs only; with --leave-one-out, hold out the\n"
+              "                        first N in turn, still training on all others (default: all)\n");
   print_info ("  -q                    no progress line\n");
   print_info ("  -h                    this help\n");
 }
@@ -80,6 +85,7 @@ parseArguments (int argc, char** argv, EvalArguments& args)
   parse_argument (argc, argv, "--tolerance", args.tolerance);
   parse_argument (argc, argv, "--max-pairs", args.max_pairs);
   parse_argument (argc, argv, "--clusters", args.clusters);
+  args.leave_one_out = find_switch (argc, argv, "--leave-one-out");
   args.quiet = find_switch (argc, argv, "-q");
   if (args.dataset.empty ())
     return print_error ("No dataset folder given (see -h).\n"), false;
@@ -91,6 +97,9 @@ parseArguments (int argc, char** argv, EvalArguments& args)
     return print_error ("--tolerance must be a non-negative distance in metres.\n"), false;
   if (args.max_pairs < 0 || args.clusters < 0)
     return print_error ("--max-pairs and --clusters must not be negative.\n"), false;
+  if (args.leave_one_out && (!args.train_dir.empty () || !args.model_dir.empty ()))
+    return print_error ("--leave-one-out trains every learned method on the dataset's other pairs: "
+                        "drop --train / --models.\n"), false;
   return true;
 }
 
@@ -107,6 +116,26 @@ progressLine (bool quiet, const std::string& method)
       std::cerr << "[" << method << "] " << done << "/" << total << " pairs\n";
     if (terminal && done == total)
       std::cerr << "\n";
+  };
+}
+
+pcl_crf::FoldProgress
+foldProgressLine (bool quiet, const std::string& method)
+{
+  if (quiet)
+    return {};
+  const bool terminal = isatty (STDERR_FILENO);
+  return [terminal, method] (const pcl_crf::FoldStatus& fold) {
+    std::ostringstream line;
+    line << "[" << method << "] fold " << fold.fold << "/" << fold.folds << " " << fold.held_out;
+    if (fold.training_pairs > 0)
+      line << (fold.finished ? ": scored" : ": training on " + std::to_string (fold.training_pairs) + " pairs");
+    if (terminal)
+      std::cerr << "\r" << line.str () << "        " << (fold.finished && fold.fold == fold.folds ? "\n" : "")
+                << std::flush;
+    else if (fold.training_pairs > 0 ? !fold.finished
+                                     : fold.finished && (fold.fold % 10 == 0 || fold.fold == fold.folds))
+      std::cerr << line.str () << "\n";
   };
 }
 
@@ -160,18 +189,49 @@ writeReport (const EvalArguments& args, const std::vector<pcl_crf::MethodEvaluat
     pcl_crf::printEvaluationTable (out, evaluations);
 }
 
+/** Every method trained and scored leave-one-out over the dataset. */
+std::vector<pcl_crf::MethodEvaluation>
+runLeaveOneOut (const EvalArguments& args, const std::vector<pcl_crf::ScanPair>& pairs,
+                const pcl_crf::ScoreOptions& options)
+{
+  pcl_crf::MethodSettings settings;
+  settings.cluster_count = args.clusters;
+  const std::size_t folds = args.max_pairs > 0 ? std::min<std::size_t> (args.max_pairs, pairs.size ()) : pairs.size ();
+  if (!args.quiet && pairs.size () >= 2)  // fewer: evaluateLeaveOneOut says why not
+    print_info ("Leave-one-out: %zu folds, each learned method trained on %zu pairs per fold\n", folds,
+                pairs.size () - 1);
+  std::vector<pcl_crf::MethodEvaluation> evaluations;
+  for (const auto& name : args.methods) {
+    pcl::console::TicToc timer;
+    timer.tic ();
+    evaluations.push_back (pcl_crf::evaluateLeaveOneOut (
+        [&] { return pcl_crf::createEvaluationMethod (name, settings); }, pairs, folds, options,
+        foldProgressLine (args.quiet, name)));
+    if (!args.quiet)
+      print_info ("[%s] %zu folds in %g s\n", name.c_str (), folds, timer.toc () / 1000.0);
+    if (!args.save_predictions.empty ())
+      savePredictions (args, {pairs.begin (), pairs.begin () + static_cast<std::ptrdiff_t> (folds)},
+                       evaluations.back ());
+  }
+  return evaluations;
+}
+
 int
 run (const EvalArguments& args)
 {
   pcl::console::TicToc timer;
   timer.tic ();
   std::vector<pcl_crf::ScanPair> pairs = pcl_crf::loadDataset (args.dataset);
-  if (args.max_pairs > 0 && pairs.size () > static_cast<std::size_t> (args.max_pairs))
-    pairs.resize (args.max_pairs);
   if (!args.quiet)
     print_info ("Loaded %zu pairs from %s in %g ms\n", pairs.size (), args.dataset.c_str (), timer.toc ());
   pcl_crf::ScoreOptions options;
   options.match_tolerance = args.tolerance;
+  if (args.leave_one_out) {
+    writeReport (args, runLeaveOneOut (args, pairs, options));
+    return 0;
+  }
+  if (args.max_pairs > 0 && pairs.size () > static_cast<std::size_t> (args.max_pairs))
+    pairs.resize (args.max_pairs);
   std::vector<pcl_crf::MethodEvaluation> evaluations;
   for (const auto& name : args.methods) {
     auto method = prepareMethod (name, args);

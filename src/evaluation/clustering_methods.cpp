@@ -9,7 +9,8 @@
 #include <pcl_crf/evaluation/clustering_methods.h>
 
 #include <algorithm>
-#include <fstream>
+#include <istream>
+#include <ostream>
 #include <stdexcept>
 #include <utility>
 
@@ -18,6 +19,13 @@ namespace pcl_crf {
 namespace {
 
 using clustering::UnpairedLabelling;
+
+/** The pair's true associations (the "-t" methods cluster the truth). */
+std::vector<int>
+trueAssociations (const ScanPair& pair)
+{
+  return pair.source_match;
+}
 
 /** CRF-Clustering on the associations of a provider. */
 class CrfClusteringMethod : public EvaluationMethod
@@ -49,17 +57,17 @@ public:
   }
 
   void
-  saveModel (const std::string& path) const override
+  writeModel (std::ostream& os) const override
   {
     if (!trained_)
       throw std::runtime_error (name_ + ": no model to save, train first");
-    clustering::saveModel (model_, path);
+    clustering::writeModel (os, model_);
   }
 
   void
-  loadModel (const std::string& path) override
+  readModel (std::istream& is, const std::string& where) override
   {
-    model_ = clustering::loadModel (path);
+    model_ = clustering::readModel (is, where);
     parameters_.features = model_.features;
     trained_ = true;
   }
@@ -88,17 +96,19 @@ private:
   bool trained_ = false;
 };
 
-/** The modified K-Means on the true associations. */
+/** The modified K-Means on the associations of a provider. */
 class KMeansMethod : public EvaluationMethod
 {
 public:
-  explicit KMeansMethod (int cluster_count) : learned_ (cluster_count <= 0)
+  KMeansMethod (std::string name, AssociationProvider associations, bool report, int cluster_count)
+    : name_ (std::move (name)), associations_ (std::move (associations)), report_ (report),
+      learned_ (cluster_count <= 0)
   {
     parameters_.cluster_count = cluster_count;
   }
 
   std::string
-  name () const override { return "kmeans"; }
+  name () const override { return name_; }
 
   bool
   isLearned () const override { return learned_; }
@@ -112,31 +122,29 @@ public:
     for (const ScanPair& pair : training_pairs)
       most = std::max (most, clustering::associatedObjectCount (pair));
     if (most < 1)
-      throw std::runtime_error ("kmeans: the training pairs have no associated point");
+      throw std::runtime_error (name_ + ": the training pairs have no associated point");
     parameters_.cluster_count = most;
   }
 
   void
-  saveModel (const std::string& path) const override
+  writeModel (std::ostream& os) const override
   {
     if (parameters_.cluster_count < 1)
-      throw std::runtime_error ("kmeans: no cluster count to save, train first");
-    std::ofstream file (path);
-    file << "pcl_crf_kmeans_model 1\ncluster_count " << parameters_.cluster_count << '\n';
-    if (!file)
-      throw std::runtime_error ("kmeans: cannot write '" + path + "'");
+      throw std::runtime_error (name_ + ": no cluster count to save, train first");
+    os << kKMeansMagic << " 1\ncluster_count " << parameters_.cluster_count << '\n';
   }
 
   void
-  loadModel (const std::string& path) override
+  readModel (std::istream& is, const std::string& where) override
   {
-    std::ifstream file (path);
-    std::string magic, key;
+    std::string magic, key, extra;
     int version = 0, count = 0;
-    if (!(file >> magic >> version) || magic != "pcl_crf_kmeans_model" || version != 1)
-      throw std::runtime_error ("kmeans: '" + path + "' is not a version 1 K-Means model");
-    if (!(file >> key >> count) || key != "cluster_count" || count < 1)
-      throw std::runtime_error ("kmeans: '" + path + "' needs a line 'cluster_count K' with K >= 1");
+    if (!(is >> magic >> version) || magic != kKMeansMagic || version != 1)
+      throw std::runtime_error (name_ + ": '" + where + "' is not a version 1 K-Means model");
+    if (!(is >> key >> count) || key != "cluster_count" || count < 1)
+      throw std::runtime_error (name_ + ": '" + where + "' needs a line 'cluster_count K' with K >= 1");
+    if (is >> extra)
+      throw std::runtime_error (name_ + ": '" + where + "' has unexpected text '" + extra + "' after cluster_count");
     parameters_.cluster_count = count;
   }
 
@@ -144,17 +152,25 @@ public:
   predict (const ScanPair& pair) override
   {
     if (parameters_.cluster_count < 1)
-      throw std::runtime_error ("kmeans: no cluster count, train or load a model first");
-    const clustering::PointPairs pairs = clustering::makePointPairs (pair.source, pair.target, pair.source_match);
+      throw std::runtime_error (name_ + ": no cluster count, train or load a model first");
+    const std::vector<int> matches = associations_ (pair);
+    const clustering::PointPairs pairs = clustering::makePointPairs (pair.source, pair.target, matches);
     const clustering::MotionKMeansResult result = clustering::clusterKMeans (pairs, parameters_);
     const int world = clustering::selectStaticCluster (result.motions, pair.odometry);
-    return clustering::makePrediction (pair, pairs, result.labels, result.motions, world,
-                                      UnpairedLabelling::NearestSegmentNeighbour, kBreakDistance);
+    Prediction prediction = clustering::makePrediction (pair, pairs, result.labels, result.motions, world,
+                                                        UnpairedLabelling::NearestSegmentNeighbour, kBreakDistance);
+    if (report_)
+      prediction.source_match = matches;
+    return prediction;
   }
 
 private:
+  static constexpr const char* kKMeansMagic = "pcl_crf_kmeans_model";
   /** segment gap for labelling points without an association, as CRF-Clustering's default [m]. */
   static constexpr double kBreakDistance = 0.5;
+  std::string name_;
+  AssociationProvider associations_;
+  bool report_ = false;
   bool learned_ = false;
   clustering::MotionKMeansParameters parameters_;
 };
@@ -208,14 +224,22 @@ makeCrfClusteringMethod (const std::string& name, AssociationProvider associatio
 std::unique_ptr<EvaluationMethod>
 makeCrfClusteringTrueAssociationsMethod (const clustering::CrfClusteringParameters& parameters)
 {
-  return makeCrfClusteringMethod ("crf-t", [] (const ScanPair& pair) { return pair.source_match; }, false,
-                                  parameters);
+  return makeCrfClusteringMethod ("crf-t", trueAssociations, false, parameters);
 }
 
 std::unique_ptr<EvaluationMethod>
 makeKMeansMethod (int cluster_count)
 {
-  return std::make_unique<KMeansMethod> (cluster_count);
+  return makeKMeansMethod ("kmeans", trueAssociations, false, cluster_count);
+}
+
+std::unique_ptr<EvaluationMethod>
+makeKMeansMethod (const std::string& name, AssociationProvider associations, bool report_associations,
+                  int cluster_count)
+{
+  if (!associations)
+    throw std::invalid_argument ("makeKMeansMethod: the association provider is empty");
+  return std::make_unique<KMeansMethod> (name, std::move (associations), report_associations, cluster_count);
 }
 
 std::unique_ptr<EvaluationMethod>

@@ -1,5 +1,7 @@
 #include <pcl_crf/evaluation/joint_methods.h>
 
+#include <istream>
+#include <ostream>
 #include <stdexcept>
 
 namespace pcl_crf {
@@ -26,16 +28,16 @@ public:
   }
 
   void
-  saveModel (const std::string& path) const override
+  writeModel (std::ostream& os) const override
   {
     requireModel ();
-    joint::saveJointModel (model_, path);
+    joint::writeJointModel (model_, os);
   }
 
   void
-  loadModel (const std::string& path) override
+  readModel (std::istream& is, const std::string& where) override
   {
-    model_ = joint::loadJointModel (path);
+    model_ = joint::readJointModel (is, where);
   }
 
   Prediction

@@ -1,3 +1,4 @@
+#include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/matching/matching_learner.h>
 #include <pcl_crf/matching/robust_rigid_fit.h>
@@ -24,6 +25,23 @@ toPrediction (const matching::MatchResult& result)
   return prediction;
 }
 
+/** PCL ICP from the odometry guess (pcl_crf/baselines/icp_baseline.h). */
+class IcpMethod : public EvaluationMethod
+{
+public:
+  std::string
+  name () const override
+  {
+    return "icp";
+  }
+
+  Prediction
+  predict (const ScanPair& pair) override
+  {
+    return runIcpBaseline (pair);
+  }
+};
+
 class CrfMatchingMethod : public EvaluationMethod
 {
 public:
@@ -48,17 +66,17 @@ public:
   }
 
   void
-  saveModel (const std::string& path) const override
+  writeModel (std::ostream& os) const override
   {
     if (!model_.isTrained ())
       throw std::runtime_error ("crf-matching: no model to save, train first");
-    matching::saveModel (model_, path);
+    matching::writeModel (model_, os);
   }
 
   void
-  loadModel (const std::string& path) override
+  readModel (std::istream& is, const std::string& where) override
   {
-    model_ = matching::loadModel (path);
+    model_ = matching::readModel (is, where);
   }
 
   Prediction
@@ -75,6 +93,12 @@ private:
 };
 
 }  // namespace
+
+std::unique_ptr<EvaluationMethod>
+makeIcpMethod ()
+{
+  return std::make_unique<IcpMethod> ();
+}
 
 std::unique_ptr<EvaluationMethod>
 makeCrfMatchingMethod (const matching::MatchingParameters& parameters)

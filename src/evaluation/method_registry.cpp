@@ -1,8 +1,8 @@
-#include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/evaluation/clustering_methods.h>
 #include <pcl_crf/evaluation/joint_methods.h>
 #include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/evaluation/method.h>
+#include <pcl_crf/evaluation/pipeline_methods.h>
 
 #include <functional>
 #include <stdexcept>
@@ -11,34 +11,21 @@
 namespace pcl_crf {
 namespace {
 
-/** PCL ICP from the odometry guess (pcl_crf/baselines/icp_baseline.h). */
-class IcpMethod : public EvaluationMethod
-{
-public:
-  std::string
-  name () const override
-  {
-    return "icp";
-  }
-
-  Prediction
-  predict (const ScanPair& pair) override
-  {
-    return runIcpBaseline (pair);
-  }
-};
-
 using MethodFactory = std::function<std::unique_ptr<EvaluationMethod> (const MethodSettings&)>;
 
 const std::vector<std::pair<std::string, MethodFactory>>&
 registry ()
 {
   static const std::vector<std::pair<std::string, MethodFactory>> methods = {
-      {"icp", [] (const MethodSettings&) { return std::make_unique<IcpMethod> (); }},
+      {"icp", [] (const MethodSettings&) { return makeIcpMethod (); }},
       {"crf-matching", [] (const MethodSettings&) { return makeCrfMatchingMethod (); }},
       {"kmeans", [] (const MethodSettings& settings) { return makeKMeansMethod (settings.cluster_count); }},
       {"cbd", [] (const MethodSettings&) { return makeConsistencyMethod (); }},
       {"crf-t", [] (const MethodSettings&) { return makeCrfClusteringTrueAssociationsMethod (); }},
+      {"icp+kmeans", [] (const MethodSettings& settings) { return makeIcpKMeansMethod (settings.cluster_count); }},
+      {"crf-matching+kmeans",
+       [] (const MethodSettings& settings) { return makeCrfMatchingKMeansMethod (settings.cluster_count); }},
+      {"crf-m", [] (const MethodSettings&) { return makeCrfMMethod (); }},
       {"joint", [] (const MethodSettings&) { return makeJointMethod (); }},
   };
   return methods;

@@ -58,6 +58,25 @@ makeCrfClusteringTrueAssociationsMethod (const clustering::CrfClusteringParamete
 std::unique_ptr<EvaluationMethod>
 makeKMeansMethod (int cluster_count = 0);
 
+/** \brief The modified K-Means of Sec. V-C on the associations of \a associations, as
+ *  an evaluation method named \a name (k and its model file as makeKMeansMethod (int);
+ *  a learned k still comes from the training pairs' true objects).
+ *
+ *  \code
+ *  auto icp_kmeans = pcl_crf::makeKMeansMethod ("icp+kmeans", [] (const pcl_crf::ScanPair& pair) {
+ *    return pcl_crf::runIcpBaseline (pair).source_match;
+ *  }, true);
+ *  \endcode
+ *  \param[in] name the method's name
+ *  \param[in] associations the associations of each pair
+ *  \param[in] report_associations copy the associations into Prediction::source_match
+ *  \param[in] cluster_count k > 0; 0: learned
+ *  \throws std::invalid_argument when \a associations is empty
+ */
+std::unique_ptr<EvaluationMethod>
+makeKMeansMethod (const std::string& name, AssociationProvider associations, bool report_associations,
+                  int cluster_count = 0);
+
 /** \brief Where the consistency-based detector takes the ego motion from. */
 enum class EgoMotionSource
 {

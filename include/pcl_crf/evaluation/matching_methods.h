@@ -7,6 +7,12 @@
 
 namespace pcl_crf {
 
+/** \brief "icp": PCL's IterativeClosestPoint from the odometry guess
+ *  (runIcpBaseline, pcl_crf/baselines/icp_baseline.h): its correspondences as
+ *  source_match, one static cluster; learns nothing. */
+std::unique_ptr<EvaluationMethod>
+makeIcpMethod ();
+
 /** \brief CRF-Matching (Ramos, Fox & Durrant-Whyte, RSS 2007) as an evaluation
  *  method named "crf-matching": learned (train / saveModel / loadModel).
  *

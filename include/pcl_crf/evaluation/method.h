@@ -3,6 +3,7 @@
 #include <pcl_crf/core/prediction.h>
 #include <pcl_crf/core/scan_pair.h>
 
+#include <iosfwd>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -36,21 +37,35 @@ public:
   train (const std::vector<ScanPair>& /*training_pairs*/)
   {}
 
-  /** \brief Writes the learned parameters as a versioned text model file.
-   *  \throws std::runtime_error when the method learns nothing or cannot write. */
+  /** \brief Writes the learned parameters as versioned text (the body of a model
+   *  file; composite methods embed their parts' text in theirs).
+   *  \throws std::runtime_error when the method learns nothing or is not trained. */
   virtual void
-  saveModel (const std::string& /*path*/) const
+  writeModel (std::ostream& /*os*/) const
   {
     throw std::runtime_error ("method '" + name () + "' has no learned model to save");
   }
 
-  /** \brief Reads a model file written by saveModel (checking its version and
-   *  every field). \throws std::runtime_error naming the problem. */
+  /** \brief Reads text written by writeModel, checking its version and every field.
+   *  \param[in] is the text
+   *  \param[in] where what the text is called in error messages (the file name)
+   *  \throws std::runtime_error naming \a where and the problem. */
   virtual void
-  loadModel (const std::string& /*path*/)
+  readModel (std::istream& /*is*/, const std::string& /*where*/)
   {
     throw std::runtime_error ("method '" + name () + "' has no learned model to load");
   }
+
+  /** \brief Writes the learned parameters as a versioned text model file (writeModel;
+   *  nothing is written when that fails).
+   *  \throws std::runtime_error when the method learns nothing or cannot write. */
+  virtual void
+  saveModel (const std::string& path) const;
+
+  /** \brief Reads a model file written by saveModel (readModel).
+   *  \throws std::runtime_error naming the file and the problem. */
+  virtual void
+  loadModel (const std::string& path);
 
   /** \brief The method's answer for one pair. Must not read the pair's ground
    *  truth except the odometry and sensor metadata. */
