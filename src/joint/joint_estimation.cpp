@@ -110,6 +110,27 @@ assemble (const LadderResult& round, const matching::Candidates& candidates, con
       result.static_cluster >= 0 ? result.cluster_motions[result.static_cluster].inverse () : odometry.T_source_target;
 }
 
+/** The static world's motion re-estimated from its MAP pairs with CRF-Matching's
+ *  robust point-to-line fit and the odometry prior (the ladder's closed-form refits
+ *  are point-to-point least squares, which walls bias along themselves). */
+void
+refineStaticMotion (const Eigen::Matrix2Xd& source, const matching::PreparedTarget& target,
+                    const matching::Candidates& candidates, const matching::MotionGuess& guess,
+                    const matching::RobustFitParameters& fit, JointResult& result)
+{
+  if (result.static_cluster < 0)
+    return;
+  std::vector<int> matches (result.source_match.size (), kNoMatch);
+  for (std::size_t i = 0; i < matches.size (); ++i)
+    if (result.source_cluster[i] == result.static_cluster)
+      matches[i] = result.source_match[i];
+  Rigid2d& T_static = result.cluster_motions[result.static_cluster];
+  T_static = matching::robustRigidFit (source, target.scan.points, target.normals, candidates, matches,
+                                       Eigen::VectorXd::Ones (static_cast<Eigen::Index> (matches.size ())), T_static,
+                                       guess, fit);
+  result.T_source_target = T_static.inverse ();
+}
+
 }  // namespace
 
 JointResult
@@ -146,6 +167,7 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   }
   result.converged = round.converged;
   assemble (round, stage.pass.candidates, odometry, result);
+  refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
   return result;
 }
 
