@@ -85,8 +85,15 @@ jointPass (AssociationStage& stage, const matching::PreparedTarget& target, cons
            const matching::CrfMatchingModel& matcher, LadderStart& start)
 {
   const matching::CandidateParameters& parameters = matcher.parameters.candidates;
-  stage.pass = matching::preparePass (stage.source, target, guess.T_target_source, stage.T_first, parameters);
-  clusterHypotheses (start, parameters.segments, stage.source, stage.pass);
+  matching::PassGeometry& pass = stage.pass;  // preparePass, with the clusters' motions as hypotheses
+  pass.T_guess = guess.T_target_source;
+  pass.T_current = stage.T_first;
+  pass.source_guess = pass.T_guess * stage.source.points;
+  pass.source_current = pass.T_current * stage.source.points;
+  pass.segment_motions = matching::segmentMotionHypotheses (stage.source.points, pass.source_current,
+                                                            target.scan.points, target.segments,
+                                                            target.index.points, parameters.segments);
+  clusterHypotheses (start, parameters.segments, stage.source, pass);
   stage.pass.candidates = matching::findCandidates (
       stage.pass.source_current,
       matching::shapeEmbedding (stage.source.shape, stage.pass.source_current, parameters.shape_position_scale),
