@@ -43,7 +43,7 @@ jointWeightNames ()
       "association_sequence", "association_sequence_repeat", "association_sequence_skip",
       "association_outlier_switch", "association_outlier_run", "association_pairwise_distance",
       "association_pairwise_translation", "rung_spacing_residual", "rung_beam_residual",
-      "rung_matched_outlier_cluster", "rung_unmatched_cluster", "rung_unmatched_outlier_cluster",
+      "rung_matched_outlier_cluster", "rung_unmatched_cluster",
       "cluster_neighbour", "cluster_weighted_neighbour", "cluster_stiffness", "cluster_outlier_switch",
       "cluster_outlier_run"};
   return names;
@@ -98,7 +98,7 @@ rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& tr
   for (int l = 0; l < clusters; ++l)
     rungClusterColumn (geometry, i, transformed_source.col (l), w, l, potential);
   potential.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
-  potential (count, clusters) = w (kRungUnmatchedOutlierCluster);
+  potential (count, clusters) = 0.0;  // the reference
 }
 
 Eigen::VectorXd
@@ -107,8 +107,10 @@ rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::ve
   Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
   const int j = stateTarget (geometry.candidates, i, s);
   const bool outlier_cluster = l == static_cast<int> (motions.size ());
-  if (j == kNoMatch)
-    f (outlier_cluster ? kRungUnmatchedOutlierCluster : kRungUnmatchedCluster) = 1.0;
+  if (j == kNoMatch) {
+    if (!outlier_cluster)
+      f (kRungUnmatchedCluster) = 1.0;
+  }
   else if (outlier_cluster)
     f (kRungMatchedOutlierCluster) = 1.0;
   else {

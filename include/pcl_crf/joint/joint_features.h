@@ -22,10 +22,10 @@ namespace joint {
  *  - cluster distance: for an association to target point t_j and a cluster l < K,
  *    log(1 + ||T_l s_i − t_j||² / h²) at the two scales of CRF-Clustering
  *    (clustering::unaryScales: the scan's sampling distance and beam spacing at s_i);
- *  - cluster inlier: the consistency of the two chains, one indicator per
- *    combination of "association is the outlier state" and "cluster is the outlier
- *    cluster" (the outlier threshold is the weight of "matched but in the outlier
- *    cluster").
+ *  - cluster inlier: the consistency of the two chains, an indicator for "matched but
+ *    in the outlier cluster" (its weight is the outlier threshold) and one for
+ *    "unmatched but in a real cluster"; an unmatched point in the outlier cluster is
+ *    the reference (0), so that the rung never rewards giving up a match.
  *  The clustering pairwise features between x^c_i and x^c_{i+1} (d = ||s_{i+1} − s_i||):
  *  neighbour [k = l], weighted neighbour [k = l] / max(d, d_min), neighbour stiffness
  *  | ||T_k s_i − T_l s_{i+1}|| − d |, and pairwise outlier (exactly one / both in
@@ -40,7 +40,6 @@ enum JointWeight : int
   kRungBeamResidual,
   kRungMatchedOutlierCluster,
   kRungUnmatchedCluster,
-  kRungUnmatchedOutlierCluster,
   // clustering chain x^c_i — x^c_{i+1}
   kClusterNeighbour,
   kClusterWeightedNeighbour,

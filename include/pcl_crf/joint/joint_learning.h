@@ -24,13 +24,21 @@ struct JointLearningOptions
   double prior_sigma = 10.0;
   /** L-BFGS stopping rules. */
   crf::LbfgsOptions lbfgs;
+  /** the candidate offsets of the association outlier bias (see selectOutlierBiasOffset)
+   *  [nats]; default −6, −5.5, …, 2. */
+  std::vector<double> outlier_bias_offset_grid{-6.0, -5.5, -5.0, -4.5, -4.0, -3.5, -3.0, -2.5, -2.0, -1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0};
   /** the candidates of JointModel::min_cluster_points [points]; default 3, 5, 8, 13, 20. */
   std::vector<int> min_cluster_points_grid{3, 5, 8, 13, 20};
 };
 
 /** \brief The node conditionals of one labelled pair for pseudo-likelihood learning
- *  of the joint weights: one per association node and one per clustering node, each
- *  with its neighbours on both chains and across the rung clamped to the truth. The
+ *  of the joint weights: one per association node (its chain neighbours and, through
+ *  the cluster-distance features only, its true cluster clamped) and one per
+ *  clustering node (its chain neighbours and its association across the rung
+ *  clamped). Leaving the rung's consistency indicators out of the association nodes
+ *  makes this a composite likelihood: the true cluster tells whether a point is
+ *  matched, so conditioning on it would explain the association's own outlier
+ *  evidence away. The
  *  clusters are the pair's objects with a true association among the candidates,
  *  with their true motions; a point whose true match is not a candidate is labelled
  *  with the outlier state and the outlier cluster.
@@ -44,8 +52,9 @@ jointNodeConditionals (const ScanPair& pair, const JointModel& model);
 /** \brief Learns a joint model from labelled pairs: the CRF-Matching part
  *  (trainCrfMatching), the initial CRF-Clustering on its associations, then the
  *  kJointWeightCount joint weights together by maximum pseudo-likelihood with L-BFGS
- *  (learnNodePseudoLikelihood over jointNodeConditionals of every pair), and the
- *  smallest cluster size (selectMinClusterPoints).
+ *  (learnNodePseudoLikelihood over jointNodeConditionals of every pair), then the
+ *  association outlier bias's calibration (selectOutlierBiasOffset) and the smallest
+ *  cluster size (selectMinClusterPoints), each chosen on the training pairs.
  *
  *  \code
  *  const pcl_crf::joint::JointModel model = pcl_crf::joint::trainJointModel (pcl_crf::loadDataset ("data/default/train"));
@@ -55,6 +64,15 @@ jointNodeConditionals (const ScanPair& pair, const JointModel& model);
  */
 JointModel
 trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions& options = {});
+
+/** \brief The offset of the association chain's outlier bias (kOutlierBias) whose
+ *  full joint inference gives the best mean association accuracy on \a pairs (ties:
+ *  the earlier value). The composite likelihood learns the association weights
+ *  without the rung, so no factor of it weighs "matched, paying the cluster-distance
+ *  cost" against "unmatched, in the outlier cluster"; this one number calibrates it.
+ *  \throws std::invalid_argument for an empty grid. */
+double
+selectOutlierBiasOffset (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid);
 
 /** \brief The grid value of min_cluster_points with the best mean V-measure of
  *  estimateJoint on \a pairs (ties: the earlier value).
