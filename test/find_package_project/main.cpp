@@ -1,6 +1,7 @@
 // A program written by a pcl_crf user: it only sees the installed package.
 #include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/joint_crf_estimator.h>
 #include <pcl_crf/metrics/pair_scores.h>
 
 #include <pcl/point_types.h>
@@ -30,6 +31,17 @@ main ()
   const double error = (prediction.cluster_motions[0].inverse () * truth).translation ().norm ();
   if (!(error < 1e-3)) {
     std::cout << "ICP error too large: " << error << std::endl;
+    return 1;
+  }
+  // The joint estimator links from the package too (its explicit instantiations);
+  // without a model it reports the problem and does not converge.
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> joint;
+  joint.setInputSource (room.makeShared ());
+  joint.setInputTarget (room.makeShared ());
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  joint.align (aligned);
+  if (joint.hasConverged ()) {
+    std::cout << "an untrained JointCRFEstimator must not converge" << std::endl;
     return 1;
   }
   std::cout << "outside project OK" << std::endl;
