@@ -114,6 +114,27 @@ TEST (JointEstimation, RejectsBadInput)
                 std::invalid_argument);
 }
 
+TEST (JointEstimation, HandlesTinyScans)
+{
+  // One to four points on either side: a result sized to the source, or a clear
+  // invalid_argument, never a crash.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  for (int n_source : {1, 2, 4})
+    for (int n_target : {1, 3}) {
+      SCOPED_TRACE (std::to_string (n_source) + " x " + std::to_string (n_target));
+      const Eigen::Matrix2Xd source = pair.source.leftCols (n_source);
+      const Eigen::Matrix2Xd target = pair.target.leftCols (n_target);
+      try {
+        const joint::JointResult r = joint::estimateJoint (source, target, pair.odometry, shippedModel ());
+        EXPECT_EQ (r.source_match.size (), static_cast<std::size_t> (n_source));
+        EXPECT_EQ (r.source_cluster.size (), static_cast<std::size_t> (n_source));
+        EXPECT_TRUE (r.T_source_target.matrix ().allFinite ());
+      }
+      catch (const std::invalid_argument&) {
+      }
+    }
+}
+
 TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
 {
   const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
