@@ -49,12 +49,16 @@ candidateStates (const Eigen::MatrixXd& local, double margin, int max_states)
   return states;
 }
 
-/** Column-wise softmax of log-potentials. */
+/** Column-wise softmax of log-potentials. The column maxima and sums are evaluated
+ *  once: inside a rowwise () expression Eigen would recompute them for every entry. */
 Eigen::MatrixXd
 columnSoftmax (const Eigen::MatrixXd& log_p)
 {
-  Eigen::MatrixXd p = (log_p.rowwise () - log_p.colwise ().maxCoeff ()).array ().exp ().matrix ();
-  return p.array ().rowwise () / p.colwise ().sum ().array ();
+  const Eigen::RowVectorXd maxima = log_p.colwise ().maxCoeff ();
+  Eigen::MatrixXd p = (log_p.rowwise () - maxima).array ().exp ().matrix ();
+  const Eigen::RowVectorXd sums = p.colwise ().sum ();
+  p.array ().rowwise () /= sums.array ();
+  return p;
 }
 
 /** What one round of belief propagation gives, in the numbering of its clusters. */
