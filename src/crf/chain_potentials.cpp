@@ -21,8 +21,8 @@ fail (const std::string& what)
 // The messages name the node or edge; they are built only on failure (validation runs
 // before every inference, on chains of hundreds of nodes).
 
-void
-validateNode (const Eigen::VectorXd& unary, std::size_t i)
+template <typename Vector> void
+validateNode (const Vector& unary, std::size_t i)
 {
   if (unary.size () == 0)
     fail ("node " + std::to_string (i) + " has zero states");
@@ -30,6 +30,13 @@ validateNode (const Eigen::VectorXd& unary, std::size_t i)
     fail ("node " + std::to_string (i) + " has a NaN or +inf unary log-potential");
   if (!std::isfinite (unary.maxCoeff ()))
     fail ("node " + std::to_string (i) + " has every state forbidden (all unary log-potentials are -inf)");
+}
+
+template <typename Matrix> void
+validateEdgeValues (const Matrix& pairwise, std::size_t i)
+{
+  if (hasNanOrPositiveInfinity (pairwise))
+    fail ("edge " + std::to_string (i) + " has a NaN or +inf pairwise log-potential");
 }
 
 void
@@ -40,8 +47,19 @@ validateEdge (const Eigen::MatrixXd& pairwise, const ChainPotentials& chain, std
           std::to_string (pairwise.cols ()) + " but nodes " + std::to_string (i) + " and " + std::to_string (i + 1) +
           " have " + std::to_string (chain.unary[i].size ()) + " and " + std::to_string (chain.unary[i + 1].size ()) +
           " states");
-  if (hasNanOrPositiveInfinity (pairwise))
-    fail ("edge " + std::to_string (i) + " has a NaN or +inf pairwise log-potential");
+  validateEdgeValues (pairwise, i);
+}
+
+[[noreturn]] void
+failLabels (std::size_t labels, std::size_t nodes)
+{
+  fail ("score: " + std::to_string (labels) + " labels for " + std::to_string (nodes) + " nodes");
+}
+
+[[noreturn]] void
+failLabel (int label, std::size_t i)
+{
+  fail ("score: label " + std::to_string (label) + " of node " + std::to_string (i) + " is out of range");
 }
 
 }  // namespace
@@ -64,17 +82,79 @@ double
 ChainPotentials::score (const std::vector<int>& labels) const
 {
   if (labels.size () != unary.size ())
-    fail ("score: " + std::to_string (labels.size ()) + " labels for " + std::to_string (unary.size ()) +
-          " nodes");
+    failLabels (labels.size (), unary.size ());
   double total = 0.0;
   for (std::size_t i = 0; i < labels.size (); ++i)
   {
     if (labels[i] < 0 || labels[i] >= unary[i].size ())
-      fail ("score: label " + std::to_string (labels[i]) + " of node " + std::to_string (i) +
-            " is out of range");
+      failLabel (labels[i], i);
     total += unary[i] (labels[i]);
     if (i > 0)
       total += pairwise[i - 1] (labels[i - 1], labels[i]);
+  }
+  return total;
+}
+
+void
+PackedChainPotentials::clear ()
+{
+  states_.clear ();
+  unary_offset_.clear ();
+  pairwise_offset_.clear ();
+  unary_.clear ();
+  pairwise_.clear ();
+}
+
+void
+PackedChainPotentials::addNode (int states)
+{
+  if (states < 1)
+    fail ("node " + std::to_string (states_.size ()) + " has zero states");
+  if (!states_.empty ())
+  {
+    pairwise_offset_.push_back (pairwise_.size ());
+    pairwise_.resize (pairwise_.size () + static_cast<std::size_t> (states_.back ()) * states, 0.0);
+  }
+  unary_offset_.push_back (unary_.size ());
+  unary_.resize (unary_.size () + static_cast<std::size_t> (states), 0.0);
+  states_.push_back (states);
+}
+
+void
+PackedChainPotentials::assign (const ChainPotentials& chain)
+{
+  clear ();
+  for (std::size_t i = 0; i < chain.size (); ++i)
+  {
+    addNode (chain.states (i));
+    unary (i) = chain.unary[i];
+    if (i > 0)
+      pairwise (i - 1) = chain.pairwise[i - 1];
+  }
+}
+
+void
+PackedChainPotentials::validate () const
+{
+  for (std::size_t i = 0; i < size (); ++i)
+    validateNode (unary (i), i);
+  for (std::size_t i = 0; i + 1 < size (); ++i)
+    validateEdgeValues (pairwise (i), i);
+}
+
+double
+PackedChainPotentials::score (const std::vector<int>& labels) const
+{
+  if (labels.size () != size ())
+    failLabels (labels.size (), size ());
+  double total = 0.0;
+  for (std::size_t i = 0; i < labels.size (); ++i)
+  {
+    if (labels[i] < 0 || labels[i] >= states (i))
+      failLabel (labels[i], i);
+    total += unary (i) (labels[i]);
+    if (i > 0)
+      total += pairwise (i - 1) (labels[i - 1], labels[i]);
   }
   return total;
 }
