@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,18 @@ namespace {
  *  in log space: each term lost to underflow is below 2.2e-308 (on the scale where the
  *  largest factors are 1), so above it the lost terms are below 2.2e-18 of the sum. */
 constexpr double kSafeSumPerTerm = 1e-290;
+
+/** The exp tables of the edges are kept for the backward pass up to this many entries
+ *  (256 KB); beyond, the backward pass computes them again (bounded memory). */
+constexpr std::size_t kMaxStoredTableEntries = std::size_t (1) << 15;
+
+/** exp(x), with results below the smallest normal double set to 0 (see flushDenormals). */
+inline double
+flushedExp (double x)
+{
+  const double e = std::exp (x);
+  return e < std::numeric_limits<double>::min () ? 0.0 : e;
+}
 
 void
 requireFeasible (double log_value, const char* method)
@@ -78,7 +91,7 @@ ChainInference::run (const PackedChainPotentials& chain, unsigned outputs)
   states_.resize (n);
   node_offset_.resize (n);
   edge_offset_.resize (n);
-  std::size_t node_total = 0, edge_total = 0;
+  std::size_t node_total = 0, edge_total = 0, max_edge = 0;
   int max_states = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -88,63 +101,139 @@ ChainInference::run (const PackedChainPotentials& chain, unsigned outputs)
     edge_offset_[i] = edge_total;
     node_total += static_cast<std::size_t> (states_[i]);
     if (i + 1 < n)
-      edge_total += static_cast<std::size_t> (states_[i]) * static_cast<std::size_t> (chain.states (i + 1));
+    {
+      const std::size_t edge = static_cast<std::size_t> (states_[i]) * static_cast<std::size_t> (chain.states (i + 1));
+      edge_total += edge;
+      max_edge = std::max (max_edge, edge);
+    }
   }
   map_log_score_ = 0.0;
   log_partition_ = 0.0;
   labels_.clear ();
-  if (outputs & kMapLabels)
+  const bool with_map = (outputs & kMapLabels) != 0;
+  const bool with_marginals = (outputs & kNodeMarginals) != 0;
+  if (n == 0 || !(with_map || with_marginals))
+    return;
+  if (with_map)
   {
     delta_.resize (node_total);
     back_.resize (node_total);
-    viterbi (chain);
   }
-  if (outputs & kNodeMarginals)
+  if (with_marginals)
   {
-    edge_exp_.resize (edge_total);
+    store_tables_ = edge_total <= kMaxStoredTableEntries;
+    edge_exp_.resize (store_tables_ ? edge_total : max_edge);
     edge_shift_.resize (n);
     alpha_.resize (node_total);
     beta_.resize (node_total);
     marginals_.resize (node_total);
     scratch_.resize (3 * static_cast<std::size_t> (max_states));
-    const bool with_edges = (outputs & kEdgeMarginals) == kEdgeMarginals;
-    if (with_edges)
-      edge_marginals_.resize (edge_total);
-    forwardBackward (chain, with_edges);
+  }
+  forward (chain, with_map, with_marginals);
+  if (with_map)
+    backtrack ();
+  if (!with_marginals)
+    return;
+  backward (chain);
+  nodeMarginals ();
+  if ((outputs & kEdgeMarginals) != kEdgeMarginals)
+    return;
+  edge_marginals_.resize (edge_total);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    fillEdgeMarginal (alphaOf (i), chain.pairwise (i), chain.unary (i + 1), betaOf (i + 1), log_partition_,
+                      Eigen::Map<Eigen::MatrixXd> (edge_marginals_.data () + edge_offset_[i], states_[i],
+                                                   states_[i + 1]));
+}
+
+double*
+ChainInference::edgeTable (const PackedChainPotentials& chain, std::size_t i, bool compute)
+{
+  const std::size_t size = static_cast<std::size_t> (states_[i]) * static_cast<std::size_t> (states_[i + 1]);
+  double* table = edge_exp_.data () + (store_tables_ ? edge_offset_[i] : 0);
+  if (!compute && store_tables_)
+    return table;
+  const double* pairwise = chain.pairwise (i).data ();
+  if (compute)
+  {
+    double maximum = kLogZero;
+    for (std::size_t k = 0; k < size; ++k)
+      maximum = std::max (maximum, pairwise[k]);
+    edge_shift_[i] = maximum == kLogZero ? 0.0 : maximum;  // every transition forbidden: all 0
+  }
+  for (std::size_t k = 0; k < size; ++k)
+    table[k] = flushedExp (pairwise[k] - edge_shift_[i]);
+  return table;
+}
+
+void
+ChainInference::forward (const PackedChainPotentials& chain, bool with_map, bool with_marginals)
+{
+  const std::size_t n = size ();
+  if (with_map)
+    std::copy_n (chain.unary (0).data (), states_[0], delta_.data ());
+  if (with_marginals)
+    std::copy_n (chain.unary (0).data (), states_[0], alpha_.data ());
+  for (std::size_t i = 0; i + 1 < n; ++i)
+  {
+    const int s_count = states_[i], t_count = states_[i + 1];
+    const double* pairwise = chain.pairwise (i).data ();
+    const double* unary = chain.unary (i + 1).data ();
+    if (with_map)
+    {
+      // Viterbi: δ_{i+1}(t) = u_{i+1}(t) + max_s [δ_i(s) + P_i(s, t)], lowest s on ties.
+      const double* delta = delta_.data () + node_offset_[i];
+      double* next = delta_.data () + node_offset_[i + 1];
+      int* back = back_.data () + node_offset_[i + 1];
+      for (int t = 0; t < t_count; ++t)
+      {
+        const double* column = pairwise + static_cast<std::ptrdiff_t> (t) * s_count;
+        int best = 0;
+        double value = delta[0] + column[0];
+        for (int s = 1; s < s_count; ++s)
+          if (delta[s] + column[s] > value)
+          {
+            value = delta[s] + column[s];
+            best = s;
+          }
+        next[t] = value + unary[t];
+        back[t] = best;
+      }
+    }
+    if (!with_marginals)
+      continue;
+    // Forward: α_{i+1}(t) = u_{i+1}(t) + log Σ_s exp(α_i(s) + P_i(s, t))
+    //   = u_{i+1}(t) + max α_i + shift_i + log Σ_s exp(α_i(s) − max α_i) exp(P_i(s, t) − shift_i).
+    const double* table = edgeTable (chain, i, true);
+    const double* alpha = alpha_.data () + node_offset_[i];
+    double* next = alpha_.data () + node_offset_[i + 1];
+    const double maximum = *std::max_element (alpha, alpha + s_count);
+    if (maximum == kLogZero)
+    {
+      std::fill_n (next, t_count, kLogZero);
+      continue;
+    }
+    double* a = scratch_.data ();
+    for (int s = 0; s < s_count; ++s)
+      a[s] = flushedExp (alpha[s] - maximum);
+    const double offset = maximum + edge_shift_[i];
+    const double safe = kSafeSumPerTerm * s_count;
+    for (int t = 0; t < t_count; ++t)
+    {
+      const double* column = table + static_cast<std::ptrdiff_t> (t) * s_count;
+      double sum = 0.0;
+      for (int s = 0; s < s_count; ++s)
+        sum += a[s] * column[s];
+      const double* log_column = pairwise + static_cast<std::ptrdiff_t> (t) * s_count;
+      next[t] = unary[t] + (sum >= safe ? offset + std::log (sum)
+                                        : logSumExpOf (s_count, [&] (int s) { return alpha[s] + log_column[s]; }));
+    }
   }
 }
 
 void
-ChainInference::viterbi (const PackedChainPotentials& chain)
+ChainInference::backtrack ()
 {
   const std::size_t n = size ();
-  if (n == 0)
-    return;
-  // δ_{i+1}(t) = u_{i+1}(t) + max_s [δ_i(s) + P_i(s, t)], lowest s on ties
-  Eigen::Map<Eigen::VectorXd> (delta_.data (), states_[0]) = chain.unary (0);
-  for (std::size_t i = 0; i + 1 < n; ++i)
-  {
-    const int s_count = states_[i];
-    const double* delta = delta_.data () + node_offset_[i];
-    double* next = delta_.data () + node_offset_[i + 1];
-    int* back = back_.data () + node_offset_[i + 1];
-    const Eigen::Map<const Eigen::MatrixXd> pairwise = chain.pairwise (i);
-    const Eigen::Map<const Eigen::VectorXd> unary = chain.unary (i + 1);
-    for (int t = 0; t < states_[i + 1]; ++t)
-    {
-      const double* column = pairwise.data () + static_cast<std::ptrdiff_t> (t) * s_count;
-      int best = 0;
-      double value = delta[0] + column[0];
-      for (int s = 1; s < s_count; ++s)
-        if (delta[s] + column[s] > value)
-        {
-          value = delta[s] + column[s];
-          best = s;
-        }
-      next[t] = value + unary (t);
-      back[t] = best;
-    }
-  }
   const double* last = delta_.data () + node_offset_[n - 1];
   int best = 0;
   for (int s = 1; s < states_[n - 1]; ++s)
@@ -159,104 +248,75 @@ ChainInference::viterbi (const PackedChainPotentials& chain)
 }
 
 void
-ChainInference::forwardBackward (const PackedChainPotentials& chain, bool with_edge_marginals)
+ChainInference::backward (const PackedChainPotentials& chain)
 {
-  using Vector = Eigen::Map<Eigen::VectorXd>;
-  using ConstMatrix = Eigen::Map<const Eigen::MatrixXd>;
+  // β_i(s) = log Σ_t exp(P_i(s, t) + v(t)), v = u_{i+1} + β_{i+1}; β_{n−1} = 0.
   const std::size_t n = size ();
-  if (n == 0)
-    return;
-  const auto alpha = [this] (std::size_t i) { return Vector (alpha_.data () + node_offset_[i], states_[i]); };
-  const auto beta = [this] (std::size_t i) { return Vector (beta_.data () + node_offset_[i], states_[i]); };
-  const auto edgeExp = [this] (std::size_t i) {
-    return ConstMatrix (edge_exp_.data () + edge_offset_[i], states_[i], states_[i + 1]);
-  };
-
-  // exp(P_i − max P_i), shared by both passes; an edge with every transition forbidden is all 0.
-  for (std::size_t i = 0; i + 1 < n; ++i)
-  {
-    const Eigen::Index size = static_cast<Eigen::Index> (states_[i]) * states_[i + 1];
-    const Eigen::Map<const Eigen::ArrayXd> pairwise (chain.pairwise (i).data (), size);
-    const double maximum = pairwise.maxCoeff ();
-    edge_shift_[i] = maximum == kLogZero ? 0.0 : maximum;
-    Eigen::Map<Eigen::ArrayXd> table (edge_exp_.data () + edge_offset_[i], size);
-    table = (pairwise - edge_shift_[i]).exp ();
-    flushDenormals (table.data (), size);
-  }
-
-  // Forward: α_{i+1}(t) = u_{i+1}(t) + log Σ_s exp(α_i(s) + P_i(s, t))
-  //                     = u_{i+1}(t) + max α_i + shift_i + log Σ_s exp(α_i(s) − max α_i) E_i(s, t).
-  alpha (0) = chain.unary (0);
-  for (std::size_t i = 0; i + 1 < n; ++i)
-  {
-    const int s_count = states_[i], t_count = states_[i + 1];
-    const Vector alpha_i = alpha (i);
-    Vector alpha_next = alpha (i + 1);
-    const Eigen::Map<const Eigen::VectorXd> unary = chain.unary (i + 1);
-    const double maximum = alpha_i.maxCoeff ();
-    if (maximum == kLogZero)
-    {
-      alpha_next.setConstant (kLogZero);
-      continue;
-    }
-    Vector a (scratch_.data (), s_count), sums (scratch_.data () + s_count, t_count);
-    a = (alpha_i.array () - maximum).exp ().matrix ();
-    flushDenormals (a.data (), s_count);
-    const ConstMatrix table = edgeExp (i);
-    for (int t = 0; t < t_count; ++t)
-      sums (t) = table.col (t).dot (a);
-    alpha_next = unary + ((maximum + edge_shift_[i]) + sums.array ().log ()).matrix ();
-    const ConstMatrix pairwise = chain.pairwise (i);
-    for (int t = 0; t < t_count; ++t)
-      if (!(sums (t) >= kSafeSumPerTerm * s_count))
-        alpha_next (t) = unary (t) + logSumExpOf (s_count, [&] (int s) { return alpha_i (s) + pairwise (s, t); });
-  }
-
-  // Backward: β_i(s) = log Σ_t exp(P_i(s, t) + v(t)), v = u_{i+1} + β_{i+1}; β_{n−1} = 0.
-  beta (n - 1).setZero ();
+  const auto max_states = static_cast<std::ptrdiff_t> (scratch_.size () / 3);
+  std::fill_n (beta_.data () + node_offset_[n - 1], states_[n - 1], 0.0);
   for (std::size_t i = n - 1; i-- > 0;)
   {
     const int s_count = states_[i], t_count = states_[i + 1];
-    Vector v (scratch_.data (), t_count), e (scratch_.data () + t_count, t_count);
-    Vector sums (scratch_.data () + 2 * t_count, s_count);
-    v = chain.unary (i + 1) + beta (i + 1);
-    Vector beta_i = beta (i);
-    const double maximum = v.maxCoeff ();
+    const double* unary = chain.unary (i + 1).data ();
+    const double* beta_next = beta_.data () + node_offset_[i + 1];
+    double* beta = beta_.data () + node_offset_[i];
+    double *v = scratch_.data (), *e = v + max_states, *sums = e + max_states;
+    double maximum = kLogZero;
+    for (int t = 0; t < t_count; ++t)
+    {
+      v[t] = unary[t] + beta_next[t];
+      maximum = std::max (maximum, v[t]);
+    }
     if (maximum == kLogZero)
     {
-      beta_i.setConstant (kLogZero);
+      std::fill_n (beta, s_count, kLogZero);
       continue;
     }
-    e = (v.array () - maximum).exp ().matrix ();
-    flushDenormals (e.data (), t_count);
-    const ConstMatrix table = edgeExp (i);
-    sums.setZero ();
     for (int t = 0; t < t_count; ++t)
-      sums += table.col (t) * e (t);
-    beta_i = ((maximum + edge_shift_[i]) + sums.array ().log ()).matrix ();
-    const ConstMatrix pairwise = chain.pairwise (i);
+      e[t] = flushedExp (v[t] - maximum);
+    const double* table = edgeTable (chain, i, false);
+    std::fill_n (sums, s_count, 0.0);
+    for (int t = 0; t < t_count; ++t)
+    {
+      const double* column = table + static_cast<std::ptrdiff_t> (t) * s_count;
+      for (int s = 0; s < s_count; ++s)
+        sums[s] += column[s] * e[t];
+    }
+    const double* pairwise = chain.pairwise (i).data ();
+    const double offset = maximum + edge_shift_[i];
+    const double safe = kSafeSumPerTerm * t_count;
     for (int s = 0; s < s_count; ++s)
-      if (!(sums (s) >= kSafeSumPerTerm * t_count))
-        beta_i (s) = logSumExpOf (t_count, [&] (int t) { return pairwise (s, t) + v (t); });
+      beta[s] = sums[s] >= safe ? offset + std::log (sums[s]) : logSumExpOf (t_count, [&] (int t) {
+        return pairwise[s + static_cast<std::ptrdiff_t> (t) * s_count] + v[t];
+      });
   }
-
-  log_partition_ = logSumExp (alpha (n - 1));  // log Z = log Σ_s exp(α_{n−1}(s))
+  log_partition_ = logSumExp (alphaOf (n - 1));  // log Z = log Σ_s exp(α_{n−1}(s))
   requireFeasible (log_partition_, "sumProduct");
+}
 
-  for (std::size_t i = 0; i < n; ++i)  // p(y_i) ∝ exp(α_i + β_i)
+void
+ChainInference::nodeMarginals ()
+{
+  for (std::size_t i = 0; i < size (); ++i)  // p(y_i) ∝ exp(α_i + β_i)
   {
-    Vector p (marginals_.data () + node_offset_[i], states_[i]);
-    p = alpha (i) + beta (i);
-    const double maximum = p.maxCoeff ();
-    p = (p.array () - maximum).exp ().matrix ();
-    flushDenormals (p.data (), p.size ());
-    p /= p.sum ();
+    const double* alpha = alpha_.data () + node_offset_[i];
+    const double* beta = beta_.data () + node_offset_[i];
+    double* p = marginals_.data () + node_offset_[i];
+    double maximum = kLogZero;
+    for (int s = 0; s < states_[i]; ++s)
+    {
+      p[s] = alpha[s] + beta[s];
+      maximum = std::max (maximum, p[s]);
+    }
+    double sum = 0.0;
+    for (int s = 0; s < states_[i]; ++s)
+    {
+      p[s] = flushedExp (p[s] - maximum);
+      sum += p[s];
+    }
+    for (int s = 0; s < states_[i]; ++s)
+      p[s] /= sum;
   }
-  if (!with_edge_marginals)
-    return;
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    fillEdgeMarginal (alpha (i), chain.pairwise (i), chain.unary (i + 1), beta (i + 1), log_partition_,
-                  Eigen::Map<Eigen::MatrixXd> (edge_marginals_.data () + edge_offset_[i], states_[i], states_[i + 1]));
 }
 
 std::vector<Eigen::VectorXd>

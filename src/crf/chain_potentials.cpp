@@ -1,6 +1,7 @@
 #include <pcl_crf/crf/chain_potentials.h>
 #include <pcl_crf/crf/log_space.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -106,6 +107,16 @@ PackedChainPotentials::clear ()
 }
 
 void
+PackedChainPotentials::reserve (std::size_t nodes, std::size_t unary_entries, std::size_t pairwise_entries)
+{
+  states_.reserve (nodes);
+  unary_offset_.reserve (nodes);
+  pairwise_offset_.reserve (nodes);
+  unary_.reserve (unary_entries);
+  pairwise_.reserve (pairwise_entries);
+}
+
+void
 PackedChainPotentials::addNode (int states)
 {
   if (states < 1)
@@ -124,6 +135,14 @@ void
 PackedChainPotentials::assign (const ChainPotentials& chain)
 {
   clear ();
+  std::size_t unary_entries = 0, pairwise_entries = 0;
+  for (std::size_t i = 0; i < chain.size (); ++i)
+  {
+    unary_entries += static_cast<std::size_t> (chain.unary[i].size ());
+    if (i + 1 < chain.size ())
+      pairwise_entries += static_cast<std::size_t> (chain.unary[i].size () * chain.unary[i + 1].size ());
+  }
+  reserve (chain.size (), unary_entries, pairwise_entries);
   for (std::size_t i = 0; i < chain.size (); ++i)
   {
     addNode (chain.states (i));
@@ -136,10 +155,20 @@ PackedChainPotentials::assign (const ChainPotentials& chain)
 void
 PackedChainPotentials::validate () const
 {
+  // One pass over each buffer; the node or edge at fault is searched only on failure.
+  const auto invalid = [] (double x) { return x != x || x == std::numeric_limits<double>::infinity (); };
+  if (std::any_of (unary_.begin (), unary_.end (), invalid))
+    for (std::size_t i = 0; i < size (); ++i)
+      validateNode (unary (i), i);
+  if (std::any_of (pairwise_.begin (), pairwise_.end (), invalid))
+    for (std::size_t i = 0; i + 1 < size (); ++i)
+      validateEdgeValues (pairwise (i), i);
   for (std::size_t i = 0; i < size (); ++i)
-    validateNode (unary (i), i);
-  for (std::size_t i = 0; i + 1 < size (); ++i)
-    validateEdgeValues (pairwise (i), i);
+  {
+    const double* u = unary_.data () + unary_offset_[i];
+    if (std::all_of (u, u + states_[i], [] (double x) { return x == -std::numeric_limits<double>::infinity (); }))
+      validateNode (unary (i), i);
+  }
 }
 
 double

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -88,6 +90,33 @@ TEST (ChainInference, AgreesWithTheLogSpaceDefinitionAtAnyMagnitude)
       EXPECT_GE (inference.logPartition (), inference.mapLogScore () - 1e-9 * std::abs (log_z)) << where;
     }
   EXPECT_GT (feasible, 40);
+}
+
+TEST (ChainInference, LongChainsRecomputeTheEdgeTablesWithTheSameResults)
+{
+  // 2500 nodes of 6 states: ~90000 transitions, beyond what the backward pass keeps.
+  std::mt19937 rng (41);
+  ChainPotentials chain = randomChain (2500, 6, 2.0, 0.0, rng);
+  std::uniform_real_distribution<double> extreme (-900.0, 900.0);
+  for (auto& p : chain.pairwise)
+  {
+    p (0, 0) = extreme (rng);  // beyond exp's range: the log-space path
+    if (p.size () > 1)
+      p (p.rows () - 1, p.cols () - 1) = kLogZero;  // a forbidden transition
+  }
+  const std::vector<Eigen::VectorXd> alpha = pcl_crf::crf::forwardMessages (chain);
+  const std::vector<Eigen::VectorXd> beta = pcl_crf::crf::backwardMessages (chain);
+  const double log_z = pcl_crf::crf::logSumExp (alpha.back ());
+  ASSERT_TRUE (std::isfinite (log_z));
+  ChainInference inference;
+  inference.compute (chain, pcl_crf::crf::kNodeMarginals);
+  EXPECT_NEAR (inference.logPartition (), log_z, 1e-12 * (1.0 + std::abs (log_z)));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < chain.size (); ++i)
+    worst = std::max (worst, (inference.nodeMarginal (i) - pcl_crf::crf::normalizedExp (alpha[i] + beta[i]))
+                                 .cwiseAbs ()
+                                 .maxCoeff ());
+  EXPECT_LT (worst, 1e-9);
 }
 
 TEST (ChainInference, ReusedWorkspaceGivesTheResultsOfAFreshOne)

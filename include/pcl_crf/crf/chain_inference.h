@@ -48,13 +48,14 @@ enum ChainOutputs : unsigned
  *  to the largest chain seen. Keep one object per thread and call compute () for
  *  chain after chain; the results are views into it, valid until the next compute ().
  *
- *  Max-product runs in log space (the same arithmetic as maxProduct ()). Sum-product
- *  keeps the messages α_i, β_i in log space but sums every message in probability
- *  space: each edge's potentials are exponentiated once, exp(P_i − max P_i), and
- *  shared by the forward and the backward pass, each message is exponentiated after
- *  subtracting its maximum, and a message entry whose sum falls so low that terms
- *  lost to underflow could matter (below S · 1e−290) is recomputed by log-sum-exp.
- *  The results agree with sumProduct ()'s log-space definition to rounding, also
+ *  Max-product runs in log space. Sum-product keeps the messages α_i, β_i in log
+ *  space but sums every message in probability space: each edge's potentials are
+ *  exponentiated once, exp(P_i − max P_i), for the forward and the backward pass (on
+ *  chains of more than 32768 transitions in all the backward pass exponentiates them
+ *  again, which bounds the memory), each message after subtracting its maximum, and a
+ *  message entry whose sum falls so low that terms lost to underflow could matter
+ *  (below S · 1e−290) is recomputed by log-sum-exp. The results agree with the
+ *  log-space definition (forwardMessages (), backwardMessages ()) to rounding, also
  *  for potentials of any magnitude and for forbidden (−∞) states and transitions.
  *
  *  \code
@@ -110,11 +111,30 @@ private:
   void
   run (const PackedChainPotentials& chain, unsigned outputs);
 
+  /** Viterbi's δ and the forward messages α, in one pass over the edges. */
   void
-  viterbi (const PackedChainPotentials& chain);
+  forward (const PackedChainPotentials& chain, bool with_map, bool with_marginals);
 
   void
-  forwardBackward (const PackedChainPotentials& chain, bool with_edge_marginals);
+  backtrack ();
+
+  /** The backward messages β and log Z. */
+  void
+  backward (const PackedChainPotentials& chain);
+
+  void
+  nodeMarginals ();
+
+  /** exp(P_i − shift_i) of edge i: computed (with its shift) when \a compute, else the
+   *  stored table or, beyond the storage bound, computed again with the stored shift. */
+  double*
+  edgeTable (const PackedChainPotentials& chain, std::size_t i, bool compute);
+
+  Eigen::Map<const Eigen::VectorXd>
+  alphaOf (std::size_t i) const { return {alpha_.data () + node_offset_[i], states_[i]}; }
+
+  Eigen::Map<const Eigen::VectorXd>
+  betaOf (std::size_t i) const { return {beta_.data () + node_offset_[i], states_[i]}; }
 
   std::vector<int> states_;
   std::vector<std::size_t> node_offset_, edge_offset_;  // into the per-state and per-edge buffers
@@ -124,10 +144,11 @@ private:
   std::vector<int> labels_;
   double map_log_score_ = 0.0;
   // sum-product
-  std::vector<double> edge_exp_;    // exp(P_i − shift_i)
+  bool store_tables_ = true;
+  std::vector<double> edge_exp_;    // exp(P_i − shift_i) of every edge, or of one
   std::vector<double> edge_shift_;  // max P_i (0 when all are −∞)
   std::vector<double> alpha_, beta_, marginals_, edge_marginals_;
-  std::vector<double> scratch_;  // 2 max S_i
+  std::vector<double> scratch_;  // 3 max S_i
   double log_partition_ = 0.0;
   PackedChainPotentials packed_;  // compute (ChainPotentials)
 };

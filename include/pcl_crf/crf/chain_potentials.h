@@ -77,6 +77,11 @@ public:
   void
   clear ();
 
+  /** \brief Reserves room for \a nodes nodes with \a unary_entries states in all and
+   *  \a pairwise_entries = Σ S_i S_{i+1} transitions (to build a chain with one allocation). */
+  void
+  reserve (std::size_t nodes, std::size_t unary_entries, std::size_t pairwise_entries);
+
   /** \brief Appends a node with \a states ≥ 1 states (and the edge from the previous node).
    *  \throws std::invalid_argument when states < 1. */
   void
