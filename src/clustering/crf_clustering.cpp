@@ -22,15 +22,17 @@ fail (const std::string& what)
 }
 
 /** The clusters each node keeps: its \a max_states best by local log-potential,
- *  of those the ones within \a margin of the best; increasing cluster order. */
-CandidateStates
-candidateStates (const Eigen::MatrixXd& local, double margin, int max_states)
+ *  of those the ones within \a margin of the best; increasing cluster order.
+ *  \a states keeps the capacity of its lists from round to round. */
+void
+candidateStates (const Eigen::MatrixXd& local, double margin, int max_states, CandidateStates& states)
 {
-  CandidateStates states (static_cast<std::size_t> (local.cols ()));
+  states.resize (static_cast<std::size_t> (local.cols ()));
   const auto keep = static_cast<std::size_t> (std::min<Eigen::Index> (local.rows (), max_states));
   for (Eigen::Index i = 0; i < local.cols (); ++i)
   {
     std::vector<int>& best = states[i];  // kept sorted by decreasing potential while scanning
+    best.clear ();
     best.reserve (keep + 1);
     for (int l = 0; l < static_cast<int> (local.rows ()); ++l)
     {
@@ -46,53 +48,65 @@ candidateStates (const Eigen::MatrixXd& local, double margin, int max_states)
     best.erase (std::remove_if (best.begin (), best.end (), below), best.end ());
     std::sort (best.begin (), best.end ());
   }
-  return states;
 }
 
-/** Column-wise softmax of log-potentials. The column maxima and sums are evaluated
- *  once: inside a rowwise () expression Eigen would recompute them for every entry. */
-Eigen::MatrixXd
-columnSoftmax (const Eigen::MatrixXd& log_p)
+/** Column-wise softmax of log-potentials, in place. The column maxima and sums are
+ *  evaluated once: inside a rowwise () expression Eigen would recompute them for every entry. */
+void
+columnSoftmax (Eigen::MatrixXd& log_p)
 {
   const Eigen::RowVectorXd maxima = log_p.colwise ().maxCoeff ();
-  Eigen::MatrixXd p = (log_p.rowwise () - maxima).array ().exp ().matrix ();
-  const Eigen::RowVectorXd sums = p.colwise ().sum ();
-  p.array ().rowwise () /= sums.array ();
-  return p;
+  log_p = (log_p.rowwise () - maxima).array ().exp ().matrix ();
+  const Eigen::RowVectorXd sums = log_p.colwise ().sum ();
+  log_p.array ().rowwise () /= sums.array ();
 }
 
-/** What one round of belief propagation gives, in the numbering of its clusters. */
-struct Beliefs
+/** What the rounds of one clusterPointPairs () call reuse. */
+struct Workspace
 {
-  std::vector<int> labels;    // MAP
-  Eigen::MatrixXd marginals;  // S x n
-  Eigen::MatrixXd local;      // S x n local log-potentials
+  Eigen::MatrixXd scales;            // unaryScales ()
+  Eigen::MatrixXd local;             // S x n local log-potentials, then the merge test's probabilities
+  CandidateStates states;            // pruned clusters of every node
+  crf::PackedChainPotentials chain;  // their potentials
+  crf::ChainInference inference;     // sum-product and max-product
 };
 
-/** One round (Sec. IV-D) from the fit weights (S x n): motions (Eq. (3)), residuals
- *  (Eq. (2)), pruned candidate states, sum-product and max-product. */
-Beliefs
+/** One round (Sec. IV-D) for the \a motions: local log-potentials (Eq. (2)), pruned
+ *  candidate states, sum-product and max-product. Leaves the local log-potentials,
+ *  the states and the inference results in \a workspace; returns the MAP cluster of
+ *  every pair. */
+std::vector<int>
 propagate (const PointPairs& pairs, const Eigen::VectorXd& weights, const CrfClusteringParameters& parameters,
-           const Eigen::MatrixXd& fit_weights)
+           const std::vector<Rigid2d>& motions, Workspace& workspace)
 {
-  const std::vector<Rigid2d> motions = solveFits (accumulateFits (pairs, fit_weights));  // Eq. (3)
-  const Eigen::MatrixXd residuals = squaredResiduals (pairs, motions);                    // Eq. (2)
-  Beliefs beliefs;
-  beliefs.local = localLogPotentials (pairs, residuals, weights, parameters.features);
-  const CandidateStates states = candidateStates (beliefs.local, parameters.pruning_margin, parameters.max_states);
-  const crf::ChainPotentials chain =
-      chainPotentials (pairs, motions, states, beliefs.local, weights, parameters.features);
-  const crf::MarginalResult sum_product = crf::sumProduct (chain);
-  const crf::MapResult map = crf::maxProduct (chain);
-  beliefs.marginals = Eigen::MatrixXd::Zero (static_cast<Eigen::Index> (motions.size ()), pairs.source.cols ());
-  beliefs.labels.resize (pairs.size ());
+  localLogPotentials (pairs, motions, workspace.scales, weights, workspace.local);  // Eq. (2)
+  candidateStates (workspace.local, parameters.pruning_margin, parameters.max_states, workspace.states);
+  chainPotentials (pairs, motions, workspace.states, workspace.local, weights, parameters.features, workspace.chain);
+  workspace.inference.compute (workspace.chain, crf::kMapAndMarginals);
+  std::vector<int> labels (pairs.size ());
   for (std::size_t i = 0; i < pairs.size (); ++i)
+    labels[i] = workspace.states[i][workspace.inference.mapLabels ()[i]];
+  return labels;
+}
+
+/** The sum-product marginals of the clusters in \a kept (rows in that order), S x n,
+ *  0 where a cluster is not a state of the node. */
+Eigen::MatrixXd
+keptMarginals (const Workspace& workspace, const std::vector<int>& kept, int cluster_count)
+{
+  std::vector<int> row (static_cast<std::size_t> (cluster_count), -1);
+  for (std::size_t k = 0; k < kept.size (); ++k)
+    row[kept[k]] = static_cast<int> (k);
+  Eigen::MatrixXd marginals = Eigen::MatrixXd::Zero (static_cast<Eigen::Index> (kept.size ()),
+                                                     static_cast<Eigen::Index> (workspace.states.size ()));
+  for (std::size_t i = 0; i < workspace.states.size (); ++i)
   {
-    for (std::size_t a = 0; a < states[i].size (); ++a)
-      beliefs.marginals (states[i][a], static_cast<Eigen::Index> (i)) = sum_product.node_marginals[i] (a);
-    beliefs.labels[i] = states[i][map.labels[i]];
+    const Eigen::Map<const Eigen::VectorXd> p = workspace.inference.nodeMarginal (i);
+    for (std::size_t a = 0; a < workspace.states[i].size (); ++a)
+      if (row[workspace.states[i][a]] >= 0)
+        marginals (row[workspace.states[i][a]], static_cast<Eigen::Index> (i)) = p (a);
   }
-  return beliefs;
+  return marginals;
 }
 
 /** Renumbers the clusters by decreasing size (ties: previous order). */
@@ -156,23 +170,45 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   result.labels = segmentByDistance (pairs.source, parameters.segment_break_distance, parameters.max_segment_points);
   int cluster_count = result.labels.back () + 1;
   result.initial_clusters = cluster_count;
-  result.marginals = oneHot (result.labels, cluster_count);
 
   // Sec. IV-D, IV-E: BP, removal of empty and ambiguous clusters (Eq. (8)), refit,
   // until the MAP labelling and the clusters stop changing.
+  Workspace workspace;
+  workspace.scales = unaryScales (pairs, parameters.features);
+  std::vector<int> every;  // 0 … S − 1
   while (result.iterations < parameters.max_iterations && !result.converged)
   {
+    // Eq. (3): first the segments (hard), then the marginals of the previous round.
+    const std::vector<Rigid2d> motions = result.iterations == 0
+                                             ? fitMotions (pairs, result.labels, cluster_count)
+                                             : solveFits (accumulateFits (pairs, result.marginals));
     ++result.iterations;
-    Beliefs beliefs = propagate (pairs, weights, parameters, result.marginals);
-    const bool same_labels = beliefs.labels == result.labels;
-    const std::vector<int> kept =
-        selectClusters (parameters.merge_evidence == MergeEvidence::Local ? columnSoftmax (beliefs.local)
-                                                                          : beliefs.marginals,
-                        beliefs.labels, parameters.max_average_neff);
+    std::vector<int> labels = propagate (pairs, weights, parameters, motions, workspace);
+    const bool same_labels = labels == result.labels;
+    std::vector<int> kept;
+    if (parameters.merge_evidence == MergeEvidence::Local)
+    {
+      columnSoftmax (workspace.local);
+      kept = selectClusters (workspace.local, labels, parameters.max_average_neff);
+    }
+    else
+    {
+      every.resize (motions.size ());
+      std::iota (every.begin (), every.end (), 0);
+      kept = selectClusters (keptMarginals (workspace, every, cluster_count), labels, parameters.max_average_neff);
+    }
     result.converged = same_labels && static_cast<int> (kept.size ()) == cluster_count;
-    keepClusters (kept, beliefs.marginals, beliefs.labels);
-    result.labels.swap (beliefs.labels);
-    result.marginals.swap (beliefs.marginals);  // the next fit weights, Eq. (3)
+    // The kept clusters' marginals, renumbered and renormalised: the next fit weights (Eq. (3)).
+    result.marginals = keptMarginals (workspace, kept, cluster_count);
+    std::vector<int> renumbered (static_cast<std::size_t> (cluster_count), -1);
+    for (std::size_t k = 0; k < kept.size (); ++k)
+      renumbered[kept[k]] = static_cast<int> (k);
+    for (int& l : labels)
+      l = renumbered[l];
+    every.resize (kept.size ());
+    std::iota (every.begin (), every.end (), 0);
+    keepClusters (every, result.marginals, labels);
+    result.labels.swap (labels);
     cluster_count = static_cast<int> (kept.size ());
   }
   result.motions = solveFits (accumulateFits (pairs, result.marginals));  // Eq. (3), weighted by the marginals
