@@ -21,32 +21,39 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::clustering::clusterPointPairs] " + what);
 }
 
-/** The clusters each node keeps: its \a max_states best by local log-potential,
- *  of those the ones within \a margin of the best; increasing cluster order.
- *  \a states keeps the capacity of its lists from round to round. */
+/** The clusters each node keeps: its \a max_states best by local log-potential (the
+ *  first of equal ones), of those the ones within \a margin of the best; increasing
+ *  cluster order. \a states keeps the capacity of its lists from round to round. */
 void
 candidateStates (const Eigen::MatrixXd& local, double margin, int max_states, CandidateStates& states)
 {
   states.resize (static_cast<std::size_t> (local.cols ()));
-  const auto keep = static_cast<std::size_t> (std::min<Eigen::Index> (local.rows (), max_states));
+  const int clusters = static_cast<int> (local.rows ());
+  const int keep = std::min (clusters, max_states);
+  std::vector<int> best (static_cast<std::size_t> (keep) + 1);  // sorted by decreasing potential
   for (Eigen::Index i = 0; i < local.cols (); ++i)
   {
-    std::vector<int>& best = states[i];  // kept sorted by decreasing potential while scanning
-    best.clear ();
-    best.reserve (keep + 1);
-    for (int l = 0; l < static_cast<int> (local.rows ()); ++l)
+    const double* column = local.data () + i * local.rows ();
+    int count = 0;
+    for (int l = 0; l < clusters; ++l)
     {
-      if (best.size () == keep && local (l, i) <= local (best.back (), i))
+      const double value = column[l];
+      if (count == keep && value <= column[best[count - 1]])
         continue;
-      auto at = std::find_if (best.begin (), best.end (), [&] (int b) { return local (l, i) > local (b, i); });
-      best.insert (at, l);
-      if (best.size () > keep)
-        best.pop_back ();
+      int at = count;  // after the ones it does not beat
+      while (at > 0 && value > column[best[at - 1]])
+        --at;
+      for (int k = std::min (count, keep - 1); k > at; --k)
+        best[k] = best[k - 1];
+      best[at] = l;
+      count = std::min (count + 1, keep);
     }
-    const double floor = local (best.front (), i) - margin;
-    const auto below = [&] (int l) { return local (l, i) < floor; };
-    best.erase (std::remove_if (best.begin (), best.end (), below), best.end ());
-    std::sort (best.begin (), best.end ());
+    const double floor = column[best[0]] - margin;
+    while (column[best[count - 1]] < floor)
+      --count;
+    std::vector<int>& kept = states[i];
+    kept.assign (best.begin (), best.begin () + count);
+    std::sort (kept.begin (), kept.end ());
   }
 }
 
