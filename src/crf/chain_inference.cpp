@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -12,9 +13,10 @@ namespace crf {
 
 namespace {
 
-/** A probability-space message sum below this times its number of terms is recomputed
- *  in log space: each term lost to underflow is below 2.2e-308 (on the scale where the
- *  largest factors are 1), so above it the lost terms are below 2.2e-18 of the sum. */
+/** A probability-space message sum below this times its number of terms sends the
+ *  message to the log-space path: every factor is at most 1 and every nonzero one
+ *  accurate, so each term lost to underflow is below 2.2e-308 and, above this, all
+ *  of them are below 2.2e-18 of the sum. */
 constexpr double kSafeSumPerTerm = 1e-290;
 
 /** The exp tables of the edges are kept for the backward pass up to this many entries
@@ -124,8 +126,16 @@ ChainInference::run (const PackedChainPotentials& chain, unsigned outputs)
     store_tables_ = edge_total <= kMaxStoredTableEntries;
     edge_exp_.resize (store_tables_ ? edge_total : max_edge);
     edge_shift_.resize (n);
+    unary_exp_.resize (node_total);
+    unary_shift_.resize (n);
+    forward_.resize (node_total);
+    backward_.resize (node_total);
+    forward_scale_.resize (n);
+    backward_scale_.resize (n);
     alpha_.resize (node_total);
     beta_.resize (node_total);
+    exact_forward_.assign (n, 0);
+    exact_backward_.assign (n, 0);
     marginals_.resize (node_total);
     scratch_.resize (3 * static_cast<std::size_t> (max_states));
   }
@@ -140,9 +150,16 @@ ChainInference::run (const PackedChainPotentials& chain, unsigned outputs)
     return;
   edge_marginals_.resize (edge_total);
   for (std::size_t i = 0; i + 1 < n; ++i)
-    fillEdgeMarginal (alphaOf (i), chain.pairwise (i), chain.unary (i + 1), betaOf (i + 1), log_partition_,
+  {
+    Eigen::VectorXd alpha (states_[i]), beta (states_[i + 1]);
+    for (int s = 0; s < states_[i]; ++s)
+      alpha (s) = logForward (i, s);
+    for (int t = 0; t < states_[i + 1]; ++t)
+      beta (t) = logBackward (i + 1, t);
+    fillEdgeMarginal (alpha, chain.pairwise (i), chain.unary (i + 1), beta, log_partition_,
                       Eigen::Map<Eigen::MatrixXd> (edge_marginals_.data () + edge_offset_[i], states_[i],
                                                    states_[i + 1]));
+  }
 }
 
 double*
@@ -165,14 +182,55 @@ ChainInference::edgeTable (const PackedChainPotentials& chain, std::size_t i, bo
   return table;
 }
 
+bool
+ChainInference::scaleUnary (const PackedChainPotentials& chain, std::size_t i)
+{
+  const double* unary = chain.unary (i).data ();
+  double* scaled = unary_exp_.data () + node_offset_[i];
+  const double maximum = *std::max_element (unary, unary + states_[i]);  // finite (validated)
+  unary_shift_[i] = maximum;
+  bool accurate = true;
+  for (int s = 0; s < states_[i]; ++s)
+  {
+    scaled[s] = flushedExp (unary[s] - maximum);
+    accurate = accurate && (scaled[s] > 0.0 || unary[s] == kLogZero);
+  }
+  return accurate;
+}
+
+double
+ChainInference::logForward (std::size_t i, int s) const
+{
+  if (exact_forward_[i])
+    return alpha_[node_offset_[i] + static_cast<std::size_t> (s)];
+  const double f = forward_[node_offset_[i] + static_cast<std::size_t> (s)];
+  return f > 0.0 ? forward_scale_[i] + std::log (f) : kLogZero;
+}
+
+double
+ChainInference::logBackward (std::size_t i, int s) const
+{
+  if (exact_backward_[i])
+    return beta_[node_offset_[i] + static_cast<std::size_t> (s)];
+  const double h = backward_[node_offset_[i] + static_cast<std::size_t> (s)];
+  return h > 0.0 ? backward_scale_[i] + std::log (h) : kLogZero;
+}
+
 void
 ChainInference::forward (const PackedChainPotentials& chain, bool with_map, bool with_marginals)
 {
   const std::size_t n = size ();
+  const double normal = std::numeric_limits<double>::min ();
   if (with_map)
     std::copy_n (chain.unary (0).data (), states_[0], delta_.data ());
   if (with_marginals)
+  {
+    // f_0 = exp(u_0 − max u_0), scale max u_0; on the log-space path when an entry underflowed.
+    exact_forward_[0] = !scaleUnary (chain, 0);
+    std::copy_n (unary_exp_.data (), states_[0], forward_.data ());
     std::copy_n (chain.unary (0).data (), states_[0], alpha_.data ());
+    forward_scale_[0] = unary_shift_[0];
+  }
   for (std::size_t i = 0; i + 1 < n; ++i)
   {
     const int s_count = states_[i], t_count = states_[i + 1];
@@ -201,33 +259,59 @@ ChainInference::forward (const PackedChainPotentials& chain, bool with_map, bool
     }
     if (!with_marginals)
       continue;
-    // Forward: α_{i+1}(t) = u_{i+1}(t) + log Σ_s exp(α_i(s) + P_i(s, t))
-    //   = u_{i+1}(t) + max α_i + shift_i + log Σ_s exp(α_i(s) − max α_i) exp(P_i(s, t) − shift_i).
+    // Scaled forward message: α_{i+1}(t) = F_{i+1} + log f_{i+1}(t) with
+    // f_{i+1}(t) ∝ exp(u_{i+1}(t) − max u_{i+1}) Σ_s f_i(s) exp(P_i(s, t) − shift_i), max 1.
     const double* table = edgeTable (chain, i, true);
-    const double* alpha = alpha_.data () + node_offset_[i];
-    double* next = alpha_.data () + node_offset_[i + 1];
-    const double maximum = *std::max_element (alpha, alpha + s_count);
-    if (maximum == kLogZero)
-    {
-      std::fill_n (next, t_count, kLogZero);
-      continue;
-    }
-    double* a = scratch_.data ();
-    for (int s = 0; s < s_count; ++s)
-      a[s] = flushedExp (alpha[s] - maximum);
-    const double offset = maximum + edge_shift_[i];
-    const double safe = kSafeSumPerTerm * s_count;
+    bool trusted = scaleUnary (chain, i + 1);
+    const double* f = forward_.data () + node_offset_[i];
+    const double* scaled_unary = unary_exp_.data () + node_offset_[i + 1];
+    double* next = forward_.data () + node_offset_[i + 1];
+    double* sums = scratch_.data ();
+    double maximum = 0.0;
     for (int t = 0; t < t_count; ++t)
     {
       const double* column = table + static_cast<std::ptrdiff_t> (t) * s_count;
       double sum = 0.0;
       for (int s = 0; s < s_count; ++s)
-        sum += a[s] * column[s];
-      const double* log_column = pairwise + static_cast<std::ptrdiff_t> (t) * s_count;
-      next[t] = unary[t] + (sum >= safe ? offset + std::log (sum)
-                                        : logSumExpOf (s_count, [&] (int s) { return alpha[s] + log_column[s]; }));
+        sum += f[s] * column[s];
+      sums[t] = sum;
+      next[t] = sum * scaled_unary[t];
+      maximum = std::max (maximum, next[t]);
     }
+    // Every allowed entry must be a normal number from a sum above the underflow losses.
+    const double safe = kSafeSumPerTerm * s_count;
+    trusted = trusted && maximum >= normal;
+    for (int t = 0; t < t_count && trusted; ++t)
+    {
+      next[t] /= maximum;
+      trusted = unary[t] == kLogZero || (sums[t] >= safe && sums[t] * scaled_unary[t] >= normal && next[t] >= normal);
+    }
+    if (trusted)
+    {
+      forward_scale_[i + 1] = forward_scale_[i] + edge_shift_[i] + unary_shift_[i + 1] + std::log (maximum);
+      continue;
+    }
+    // Log-space path: α_{i+1}(t) = u_{i+1}(t) + log Σ_s exp(α_i(s) + P_i(s, t)).
+    exact_forward_[i + 1] = 1;
+    double* alpha = scratch_.data () + s_count;
+    for (int s = 0; s < s_count; ++s)
+      alpha[s] = logForward (i, s);
+    double* alpha_next = alpha_.data () + node_offset_[i + 1];
+    for (int t = 0; t < t_count; ++t)
+    {
+      const double* column = pairwise + static_cast<std::ptrdiff_t> (t) * s_count;
+      alpha_next[t] = unary[t] + logSumExpOf (s_count, [&] (int s) { return alpha[s] + column[s]; });
+    }
+    rescale (alpha_next, t_count, next, forward_scale_[i + 1]);
   }
+}
+
+void
+ChainInference::rescale (const double* log_values, int count, double* scaled, double& scale)
+{
+  scale = *std::max_element (log_values, log_values + count);
+  for (int k = 0; k < count; ++k)
+    scaled[k] = scale == kLogZero ? 0.0 : flushedExp (log_values[k] - scale);
 }
 
 void
@@ -250,71 +334,85 @@ ChainInference::backtrack ()
 void
 ChainInference::backward (const PackedChainPotentials& chain)
 {
-  // β_i(s) = log Σ_t exp(P_i(s, t) + v(t)), v = u_{i+1} + β_{i+1}; β_{n−1} = 0.
   const std::size_t n = size ();
-  const auto max_states = static_cast<std::ptrdiff_t> (scratch_.size () / 3);
-  std::fill_n (beta_.data () + node_offset_[n - 1], states_[n - 1], 0.0);
+  // log Z = log Σ_s exp(α_{n−1}(s)) = F_{n−1} + log Σ_s f_{n−1}(s)
+  const double* last = forward_.data () + node_offset_[n - 1];
+  log_partition_ = forward_scale_[n - 1] + std::log (std::accumulate (last, last + states_[n - 1], 0.0));
+  requireFeasible (log_partition_, "sumProduct");
+
+  // Scaled backward message: β_i(s) = B_i + log h_i(s) with
+  // h_i(s) ∝ Σ_t exp(P_i(s, t) − shift_i) exp(u_{i+1}(t) − max u_{i+1}) h_{i+1}(t), max 1; β_{n−1} = 0.
+  std::fill_n (backward_.data () + node_offset_[n - 1], states_[n - 1], 1.0);
+  backward_scale_[n - 1] = 0.0;
   for (std::size_t i = n - 1; i-- > 0;)
   {
     const int s_count = states_[i], t_count = states_[i + 1];
-    const double* unary = chain.unary (i + 1).data ();
-    const double* beta_next = beta_.data () + node_offset_[i + 1];
-    double* beta = beta_.data () + node_offset_[i];
-    double *v = scratch_.data (), *e = v + max_states, *sums = e + max_states;
-    double maximum = kLogZero;
-    for (int t = 0; t < t_count; ++t)
-    {
-      v[t] = unary[t] + beta_next[t];
-      maximum = std::max (maximum, v[t]);
-    }
-    if (maximum == kLogZero)
-    {
-      std::fill_n (beta, s_count, kLogZero);
-      continue;
-    }
-    for (int t = 0; t < t_count; ++t)
-      e[t] = flushedExp (v[t] - maximum);
     const double* table = edgeTable (chain, i, false);
-    std::fill_n (sums, s_count, 0.0);
+    const double* scaled_unary = unary_exp_.data () + node_offset_[i + 1];
+    const double* h_next = backward_.data () + node_offset_[i + 1];
+    double* h = backward_.data () + node_offset_[i];
+    double* v = scratch_.data ();
+    for (int t = 0; t < t_count; ++t)
+      v[t] = scaled_unary[t] * h_next[t];
+    std::fill_n (h, s_count, 0.0);
     for (int t = 0; t < t_count; ++t)
     {
       const double* column = table + static_cast<std::ptrdiff_t> (t) * s_count;
       for (int s = 0; s < s_count; ++s)
-        sums[s] += column[s] * e[t];
+        h[s] += column[s] * v[t];
     }
-    const double* pairwise = chain.pairwise (i).data ();
-    const double offset = maximum + edge_shift_[i];
+    const double maximum = *std::max_element (h, h + s_count);
     const double safe = kSafeSumPerTerm * t_count;
+    if (std::all_of (h, h + s_count, [safe] (double sum) { return sum >= safe; }))
+    {
+      for (int s = 0; s < s_count; ++s)
+        h[s] /= maximum;
+      backward_scale_[i] = backward_scale_[i + 1] + unary_shift_[i + 1] + edge_shift_[i] + std::log (maximum);
+      continue;
+    }
+    // Log-space path: β_i(s) = log Σ_t exp(P_i(s, t) + u_{i+1}(t) + β_{i+1}(t)).
+    exact_backward_[i] = 1;
+    const double* unary = chain.unary (i + 1).data ();
+    for (int t = 0; t < t_count; ++t)
+      v[t] = unary[t] + logBackward (i + 1, t);
+    const double* pairwise = chain.pairwise (i).data ();
+    double* beta = beta_.data () + node_offset_[i];
     for (int s = 0; s < s_count; ++s)
-      beta[s] = sums[s] >= safe ? offset + std::log (sums[s]) : logSumExpOf (t_count, [&] (int t) {
-        return pairwise[s + static_cast<std::ptrdiff_t> (t) * s_count] + v[t];
-      });
+      beta[s] = logSumExpOf (t_count, [&] (int t) { return pairwise[s + static_cast<std::ptrdiff_t> (t) * s_count] + v[t]; });
+    rescale (beta, s_count, h, backward_scale_[i]);
   }
-  log_partition_ = logSumExp (alphaOf (n - 1));  // log Z = log Σ_s exp(α_{n−1}(s))
-  requireFeasible (log_partition_, "sumProduct");
 }
 
 void
 ChainInference::nodeMarginals ()
 {
-  for (std::size_t i = 0; i < size (); ++i)  // p(y_i) ∝ exp(α_i + β_i)
+  for (std::size_t i = 0; i < size (); ++i)  // p(y_i) ∝ exp(α_i + β_i) ∝ f_i h_i
   {
-    const double* alpha = alpha_.data () + node_offset_[i];
-    const double* beta = beta_.data () + node_offset_[i];
+    const int count = states_[i];
+    const double* f = forward_.data () + node_offset_[i];
+    const double* h = backward_.data () + node_offset_[i];
     double* p = marginals_.data () + node_offset_[i];
-    double maximum = kLogZero;
-    for (int s = 0; s < states_[i]; ++s)
+    if (!exact_forward_[i] && !exact_backward_[i])
     {
-      p[s] = alpha[s] + beta[s];
-      maximum = std::max (maximum, p[s]);
+      double sum = 0.0;
+      for (int s = 0; s < count; ++s)
+      {
+        p[s] = f[s] * h[s];
+        sum += p[s];
+      }
+      if (sum >= kSafeSumPerTerm * count)
+      {
+        for (int s = 0; s < count; ++s)
+          p[s] /= sum;
+        continue;
+      }
     }
-    double sum = 0.0;
-    for (int s = 0; s < states_[i]; ++s)
-    {
-      p[s] = flushedExp (p[s] - maximum);
-      sum += p[s];
-    }
-    for (int s = 0; s < states_[i]; ++s)
+    for (int s = 0; s < count; ++s)
+      p[s] = logForward (i, s) + logBackward (i, s);
+    double scale = 0.0;
+    rescale (p, count, p, scale);
+    const double sum = std::accumulate (p, p + count, 0.0);
+    for (int s = 0; s < count; ++s)
       p[s] /= sum;
   }
 }

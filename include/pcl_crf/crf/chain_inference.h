@@ -48,15 +48,18 @@ enum ChainOutputs : unsigned
  *  to the largest chain seen. Keep one object per thread and call compute () for
  *  chain after chain; the results are views into it, valid until the next compute ().
  *
- *  Max-product runs in log space. Sum-product keeps the messages α_i, β_i in log
- *  space but sums every message in probability space: each edge's potentials are
- *  exponentiated once, exp(P_i − max P_i), for the forward and the backward pass (on
- *  chains of more than 32768 transitions in all the backward pass exponentiates them
- *  again, which bounds the memory), each message after subtracting its maximum, and a
- *  message entry whose sum falls so low that terms lost to underflow could matter
- *  (below S · 1e−290) is recomputed by log-sum-exp. The results agree with the
- *  log-space definition (forwardMessages (), backwardMessages ()) to rounding, also
- *  for potentials of any magnitude and for forbidden (−∞) states and transitions.
+ *  Max-product runs in log space. Sum-product runs in probability space with scaled
+ *  messages (Rabiner's scaling): α_i(s) = F_i + log f_i(s) with max_s f_i(s) = 1, β
+ *  likewise, node marginals ∝ f_i h_i. Each unary vector and each edge is
+ *  exponentiated once after subtracting its maximum, exp(u_i − max u_i) and
+ *  exp(P_i − max P_i), for both passes (on chains of more than 32768 transitions in
+ *  all the backward pass exponentiates the edges again, which bounds the memory); a
+ *  message costs one logarithm. A message in which an allowed entry would not be an
+ *  accurate normal number (a sum below S · 1e−290, where terms lost to underflow
+ *  could matter, or an underflowed product) is computed by log-sum-exp instead and
+ *  kept in log space. The results agree with the log-space definition
+ *  (forwardMessages (), backwardMessages ()) to rounding, also for potentials of any
+ *  magnitude and for forbidden (−∞) states and transitions.
  *
  *  \code
  *  pcl_crf::crf::ChainInference inference;   // keep it: its buffers are reused
@@ -111,14 +114,14 @@ private:
   void
   run (const PackedChainPotentials& chain, unsigned outputs);
 
-  /** Viterbi's δ and the forward messages α, in one pass over the edges. */
+  /** Viterbi's δ and the scaled forward messages, in one pass over the edges. */
   void
   forward (const PackedChainPotentials& chain, bool with_map, bool with_marginals);
 
   void
   backtrack ();
 
-  /** The backward messages β and log Z. */
+  /** log Z and the scaled backward messages. */
   void
   backward (const PackedChainPotentials& chain);
 
@@ -130,11 +133,20 @@ private:
   double*
   edgeTable (const PackedChainPotentials& chain, std::size_t i, bool compute);
 
-  Eigen::Map<const Eigen::VectorXd>
-  alphaOf (std::size_t i) const { return {alpha_.data () + node_offset_[i], states_[i]}; }
+  /** exp(u_i − max u_i) into unary_exp_; false when an allowed state underflowed. */
+  bool
+  scaleUnary (const PackedChainPotentials& chain, std::size_t i);
 
-  Eigen::Map<const Eigen::VectorXd>
-  betaOf (std::size_t i) const { return {beta_.data () + node_offset_[i], states_[i]}; }
+  /** \a scaled = exp(log_values − scale), scale = max log_values (−∞: all 0). */
+  static void
+  rescale (const double* log_values, int count, double* scaled, double& scale);
+
+  /** α_i(s) and β_i(s) in log space, from either representation. */
+  double
+  logForward (std::size_t i, int s) const;
+
+  double
+  logBackward (std::size_t i, int s) const;
 
   std::vector<int> states_;
   std::vector<std::size_t> node_offset_, edge_offset_;  // into the per-state and per-edge buffers
@@ -143,11 +155,17 @@ private:
   std::vector<int> back_;
   std::vector<int> labels_;
   double map_log_score_ = 0.0;
-  // sum-product
+  // sum-product: α_i(s) = forward_scale_[i] + log forward_ (s), β likewise, unless the
+  // node's message took the log-space path: then alpha_ / beta_ hold it exactly.
   bool store_tables_ = true;
   std::vector<double> edge_exp_;    // exp(P_i − shift_i) of every edge, or of one
   std::vector<double> edge_shift_;  // max P_i (0 when all are −∞)
-  std::vector<double> alpha_, beta_, marginals_, edge_marginals_;
+  std::vector<double> unary_exp_;   // exp(u_i − max u_i)
+  std::vector<double> unary_shift_;
+  std::vector<double> forward_, backward_, forward_scale_, backward_scale_;
+  std::vector<double> alpha_, beta_;
+  std::vector<char> exact_forward_, exact_backward_;
+  std::vector<double> marginals_, edge_marginals_;
   std::vector<double> scratch_;  // 3 max S_i
   double log_partition_ = 0.0;
   PackedChainPotentials packed_;  // compute (ChainPotentials)
