@@ -18,11 +18,12 @@ public:
   EffectiveCounts (const Eigen::MatrixXd& p, const std::vector<int>& labels)
     : p_ (p), total_ (p.colwise ().sum ().transpose ()), squares_ (p.colwise ().squaredNorm ().transpose ()),
       active_ (static_cast<std::size_t> (p.rows ()), true), neff_sum_ (Eigen::VectorXd::Zero (p.rows ())),
-      count_ (Eigen::VectorXd::Zero (p.rows ()))
+      count_ (Eigen::VectorXd::Zero (p.rows ())), neff_ (p.cols ())
   {
     for (std::size_t i = 0; i < labels.size (); ++i)
     {
-      neff_sum_ (labels[i]) += neff (static_cast<Eigen::Index> (i));
+      neff_ (static_cast<Eigen::Index> (i)) = neff (static_cast<Eigen::Index> (i));
+      neff_sum_ (labels[i]) += neff_ (static_cast<Eigen::Index> (i));
       count_ (labels[i]) += 1.0;
     }
   }
@@ -46,13 +47,14 @@ public:
     for (std::size_t k = 0; k < labels.size (); ++k)
     {
       const auto i = static_cast<Eigen::Index> (k);
-      neff_sum_ (labels[k]) -= neff (i);
+      neff_sum_ (labels[k]) -= neff_ (i);
       count_ (labels[k]) -= 1.0;
       total_ (i) -= p_ (r, i);
       squares_ (i) -= p_ (r, i) * p_ (r, i);
       if (labels[k] == r)
         labels[k] = bestActive (i);
-      neff_sum_ (labels[k]) += neff (i);
+      neff_ (i) = neff (i);
+      neff_sum_ (labels[k]) += neff_ (i);
       count_ (labels[k]) += 1.0;
     }
   }
@@ -84,6 +86,7 @@ private:
   Eigen::VectorXd total_, squares_;
   std::vector<bool> active_;
   Eigen::VectorXd neff_sum_, count_;
+  Eigen::VectorXd neff_;  // N_eff of every point as last added to neff_sum_
 };
 
 void

@@ -138,18 +138,33 @@ localLogPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions
                     const Eigen::VectorXd& weights, Eigen::MatrixXd& local)
 {
   const Eigen::Index n = pairs.source.cols ();
-  local.resize (static_cast<Eigen::Index> (motions.size ()), n);
+  const auto s_count = static_cast<Eigen::Index> (motions.size ());
+  local.resize (s_count, n);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> coefficients (6, s_count);  // R row-major, then T
+  for (Eigen::Index l = 0; l < s_count; ++l)
+  {
+    const Eigen::Matrix2d R = motions[l].linear ();
+    coefficients.col (l) << R (0, 0), R (0, 1), R (1, 0), R (1, 1), motions[l].translation ();
+  }
+  double w[kUnaryFeatureCount], c[kUnaryFeatureCount];
+  for (int k = 0; k < kUnaryFeatureCount; ++k)
+    w[k] = weights (k);
   for (Eigen::Index i = 0; i < n; ++i)
   {
-    const Eigen::Vector2d s = pairs.source.col (i), g = pairs.target.col (i);
-    for (std::size_t l = 0; l < motions.size (); ++l)
+    const double x = pairs.source (0, i), y = pairs.source (1, i);
+    const double gx = pairs.target (0, i), gy = pairs.target (1, i);
+    for (int k = 0; k < kUnaryFeatureCount; ++k)
+      c[k] = scales (k, i);
+    double* column = local.data () + i * s_count;
+    for (Eigen::Index l = 0; l < s_count; ++l)
     {
-      const Eigen::Vector2d moved = motions[l].linear () * s + motions[l].translation ();
-      const double f = (moved - g).squaredNorm ();  // Eq. (2), as squaredResiduals ()
+      const double* m = coefficients.data () + 6 * l;
+      const double dx = (m[0] * x + m[1] * y) + m[4] - gx, dy = (m[2] * x + m[3] * y) + m[5] - gy;
+      const double f = dx * dx + dy * dy;  // Eq. (2): ||T_l s_i − g_i||², as squaredResiduals ()
       double value = 0.0;
       for (int k = 0; k < kUnaryFeatureCount; ++k)  // w_k log(1 + f_dist c_k), as unaryFeatures ()
-        value += weights (k) * std::log1p (f * scales (k, i));
-      local (static_cast<Eigen::Index> (l), i) = value;
+        value += w[k] * std::log1p (f * c[k]);
+      column[l] = value;
     }
   }
 }

@@ -155,12 +155,17 @@ PackedChainPotentials::assign (const ChainPotentials& chain)
 void
 PackedChainPotentials::validate () const
 {
-  // One pass over each buffer; the node or edge at fault is searched only on failure.
-  const auto invalid = [] (double x) { return x != x || x == std::numeric_limits<double>::infinity (); };
-  if (std::any_of (unary_.begin (), unary_.end (), invalid))
+  // One branch-free pass over each buffer; the node or edge at fault is searched only on failure.
+  const auto invalid = [] (const std::vector<double>& values) {
+    bool any = false;
+    for (const double x : values)
+      any |= (x != x) | (x == std::numeric_limits<double>::infinity ());
+    return any;
+  };
+  if (invalid (unary_))
     for (std::size_t i = 0; i < size (); ++i)
       validateNode (unary (i), i);
-  if (std::any_of (pairwise_.begin (), pairwise_.end (), invalid))
+  if (invalid (pairwise_))
     for (std::size_t i = 0; i + 1 < size (); ++i)
       validateEdgeValues (pairwise (i), i);
   for (std::size_t i = 0; i < size (); ++i)
