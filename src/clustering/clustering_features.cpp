@@ -162,8 +162,8 @@ localLogPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions
       const double dx = (m[0] * x + m[1] * y) + m[4] - gx, dy = (m[2] * x + m[3] * y) + m[5] - gy;
       const double f = dx * dx + dy * dy;  // Eq. (2): ||T_l s_i − g_i||², as squaredResiduals ()
       double value = 0.0;
-      for (int k = 0; k < kUnaryFeatureCount; ++k)  // w_k log(1 + f_dist c_k), as unaryFeatures ()
-        value += w[k] * std::log1p (f * c[k]);
+      for (int k = 0; k < kUnaryFeatureCount; ++k)  // w_k log(1 + f_dist c_k), see the declaration
+        value += w[k] * std::log (1.0 + f * c[k]);
       column[l] = value;
     }
   }

@@ -6,6 +6,7 @@
 #include <pcl_crf/crf/chain_inference.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -57,15 +58,23 @@ candidateStates (const Eigen::MatrixXd& local, double margin, int max_states, Ca
   }
 }
 
-/** Column-wise softmax of log-potentials, in place. The column maxima and sums are
- *  evaluated once: inside a rowwise () expression Eigen would recompute them for every entry. */
+/** Column-wise softmax of log-potentials, in place (glibc's exp: faster here than Eigen's). */
 void
 columnSoftmax (Eigen::MatrixXd& log_p)
 {
-  const Eigen::RowVectorXd maxima = log_p.colwise ().maxCoeff ();
-  log_p = (log_p.rowwise () - maxima).array ().exp ().matrix ();
-  const Eigen::RowVectorXd sums = log_p.colwise ().sum ();
-  log_p.array ().rowwise () /= sums.array ();
+  for (Eigen::Index i = 0; i < log_p.cols (); ++i)
+  {
+    double* column = log_p.data () + i * log_p.rows ();
+    const double maximum = *std::max_element (column, column + log_p.rows ());
+    double sum = 0.0;
+    for (Eigen::Index l = 0; l < log_p.rows (); ++l)
+    {
+      column[l] = std::exp (column[l] - maximum);
+      sum += column[l];
+    }
+    for (Eigen::Index l = 0; l < log_p.rows (); ++l)
+      column[l] /= sum;
+  }
 }
 
 /** What the rounds of one clusterPointPairs () call reuse. */

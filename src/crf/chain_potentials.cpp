@@ -157,10 +157,10 @@ PackedChainPotentials::validate () const
 {
   // One branch-free pass over each buffer; the node or edge at fault is searched only on failure.
   const auto invalid = [] (const std::vector<double>& values) {
-    bool any = false;
+    int count = 0;  // !(x <= max): NaN or +∞
     for (const double x : values)
-      any |= (x != x) | (x == std::numeric_limits<double>::infinity ());
-    return any;
+      count += !(x <= std::numeric_limits<double>::max ());
+    return count != 0;
   };
   if (invalid (unary_))
     for (std::size_t i = 0; i < size (); ++i)
