@@ -77,7 +77,7 @@ columnSoftmax (Eigen::MatrixXd& log_p)
   }
 }
 
-/** What the rounds of one clusterPointPairs () call reuse. */
+/** What the rounds of clusterPointPairs () reuse (kept per thread between calls). */
 struct Workspace
 {
   Eigen::MatrixXd scales;            // unaryScales ()
@@ -189,7 +189,10 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
 
   // Sec. IV-D, IV-E: BP, removal of empty and ambiguous clusters (Eq. (8)), refit,
   // until the MAP labelling and the clusters stop changing.
-  Workspace workspace;
+  // The buffers are kept per thread from call to call: after the first call, a call
+  // allocates only its result and a few small per-round matrices, so that the heap
+  // does not grow and shrink (with page faults) on every call.
+  static thread_local Workspace workspace;
   workspace.scales = unaryScales (pairs, parameters.features);
   std::vector<int> every;  // 0 … S − 1
   while (result.iterations < parameters.max_iterations && !result.converged)
