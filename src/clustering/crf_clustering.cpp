@@ -105,7 +105,7 @@ propagate (const PointPairs& pairs, const Eigen::VectorXd& weights, const CrfClu
   return labels;
 }
 
-/** The sum-product marginals of the clusters in \a kept (rows in that order), S x n,
+/** The sum-product marginals of the clusters in \a kept (rows in that order), |kept| x n,
  *  0 where a cluster is not a state of the node. */
 Eigen::MatrixXd
 keptMarginals (const Workspace& workspace, const std::vector<int>& kept, int cluster_count)

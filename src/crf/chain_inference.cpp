@@ -39,8 +39,8 @@ requireFeasible (double log_value, const char* method)
                                  "] every labelling of the chain is forbidden (-inf score)");
 }
 
-/** log Σ_k exp(term (k)) for k < count, by log-sum-exp (the exact path of a message
- *  entry whose probability-space sum underflowed). */
+/** log Σ_k exp(term (k)) for k < count, by log-sum-exp (the log-space path of a
+ *  message whose probability-space sums cannot be trusted). */
 template <typename Term> double
 logSumExpOf (int count, Term term)
 {
