@@ -17,12 +17,13 @@ class EffectiveCounts
 public:
   EffectiveCounts (const Eigen::MatrixXd& p, const std::vector<int>& labels)
     : p_ (p), total_ (p.colwise ().sum ().transpose ()), squares_ (p.colwise ().squaredNorm ().transpose ()),
-      active_ (static_cast<std::size_t> (p.rows ()), true), neff_sum_ (Eigen::VectorXd::Zero (p.rows ())),
-      count_ (Eigen::VectorXd::Zero (p.rows ()))
+      active_ (static_cast<std::size_t> (p.rows ()), 1), neff_sum_ (Eigen::VectorXd::Zero (p.rows ())),
+      count_ (Eigen::VectorXd::Zero (p.rows ())), neff_ (p.cols ())
   {
     for (std::size_t i = 0; i < labels.size (); ++i)
     {
-      neff_sum_ (labels[i]) += neff (static_cast<Eigen::Index> (i));
+      neff_ (static_cast<Eigen::Index> (i)) = neff (static_cast<Eigen::Index> (i));
+      neff_sum_ (labels[i]) += neff_ (static_cast<Eigen::Index> (i));
       count_ (labels[i]) += 1.0;
     }
   }
@@ -42,26 +43,27 @@ public:
   void
   remove (int r, std::vector<int>& labels)
   {
-    active_[r] = false;
+    active_[r] = 0;
     for (std::size_t k = 0; k < labels.size (); ++k)
     {
       const auto i = static_cast<Eigen::Index> (k);
-      neff_sum_ (labels[k]) -= neff (i);
+      neff_sum_ (labels[k]) -= neff_ (i);
       count_ (labels[k]) -= 1.0;
       total_ (i) -= p_ (r, i);
       squares_ (i) -= p_ (r, i) * p_ (r, i);
       if (labels[k] == r)
         labels[k] = bestActive (i);
-      neff_sum_ (labels[k]) += neff (i);
+      neff_ (i) = neff (i);
+      neff_sum_ (labels[k]) += neff_ (i);
       count_ (labels[k]) += 1.0;
     }
   }
 
   bool
-  isActive (int l) const { return active_[l]; }
+  isActive (int l) const { return active_[l] != 0; }
 
   int
-  activeCount () const { return static_cast<int> (std::count (active_.begin (), active_.end (), true)); }
+  activeCount () const { return static_cast<int> (std::count (active_.begin (), active_.end (), 1)); }
 
 private:
   double
@@ -82,8 +84,9 @@ private:
 
   const Eigen::MatrixXd& p_;
   Eigen::VectorXd total_, squares_;
-  std::vector<bool> active_;
+  std::vector<char> active_;  // not vector<bool>: bestActive () reads it for every point of a removed cluster
   Eigen::VectorXd neff_sum_, count_;
+  Eigen::VectorXd neff_;  // N_eff of every point as last added to neff_sum_
 };
 
 void

@@ -133,6 +133,42 @@ localLogPotentials (const PointPairs& pairs, const Eigen::MatrixXd& residuals, c
   return local;
 }
 
+void
+localLogPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions, const Eigen::MatrixXd& scales,
+                    const Eigen::VectorXd& weights, Eigen::MatrixXd& local)
+{
+  const Eigen::Index n = pairs.source.cols ();
+  const auto s_count = static_cast<Eigen::Index> (motions.size ());
+  local.resize (s_count, n);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> coefficients (6, s_count);  // R row-major, then T
+  for (Eigen::Index l = 0; l < s_count; ++l)
+  {
+    const Eigen::Matrix2d R = motions[l].linear ();
+    coefficients.col (l) << R (0, 0), R (0, 1), R (1, 0), R (1, 1), motions[l].translation ();
+  }
+  double w[kUnaryFeatureCount], c[kUnaryFeatureCount];
+  for (int k = 0; k < kUnaryFeatureCount; ++k)
+    w[k] = weights (k);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const double x = pairs.source (0, i), y = pairs.source (1, i);
+    const double gx = pairs.target (0, i), gy = pairs.target (1, i);
+    for (int k = 0; k < kUnaryFeatureCount; ++k)
+      c[k] = scales (k, i);
+    double* column = local.data () + i * s_count;
+    for (Eigen::Index l = 0; l < s_count; ++l)
+    {
+      const double* m = coefficients.data () + 6 * l;
+      const double dx = (m[0] * x + m[1] * y) + m[4] - gx, dy = (m[2] * x + m[3] * y) + m[5] - gy;
+      const double f = dx * dx + dy * dy;  // Eq. (2): ||T_l s_i − g_i||², as squaredResiduals ()
+      double value = 0.0;
+      for (int k = 0; k < kUnaryFeatureCount; ++k)  // w_k log(1 + f_dist c_k), see the declaration
+        value += w[k] * std::log (1.0 + f * c[k]);
+      column[l] = value;
+    }
+  }
+}
+
 CandidateStates
 allStates (std::size_t node_count, int cluster_count)
 {
@@ -185,6 +221,61 @@ chainPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions, c
   for (std::size_t i = 0; i + 1 < pairs.size (); ++i)
     chain.pairwise.push_back (edgeTable (makeEdge (pairs, moved, i, options), states[i], states[i + 1], weights));
   return chain;
+}
+
+void
+chainPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions, const CandidateStates& states,
+                 const Eigen::MatrixXd& local, const Eigen::VectorXd& weights, const FeatureOptions& options,
+                 crf::PackedChainPotentials& chain)
+{
+  checkSizes (pairs, states, local.rows (), local.cols (), motions.size ());
+  if (weights.size () != kWeightCount)
+    throw std::invalid_argument ("[pcl_crf::clustering::chainPotentials] expected " + std::to_string (kWeightCount) +
+                                 " weights");
+  const double w_same = weights (kUnaryFeatureCount), w_inverse = weights (kUnaryFeatureCount + 1);
+  const double w_stiffness = weights (kUnaryFeatureCount + 2);
+  chain.clear ();
+  std::size_t unary_entries = 0, pairwise_entries = 0;
+  for (std::size_t i = 0; i < pairs.size (); ++i)
+  {
+    unary_entries += states[i].size ();
+    if (i + 1 < pairs.size ())
+      pairwise_entries += states[i].size () * states[i + 1].size ();
+  }
+  chain.reserve (pairs.size (), unary_entries, pairwise_entries);
+  for (std::size_t i = 0; i < pairs.size (); ++i)
+  {
+    chain.addNode (static_cast<int> (states[i].size ()));
+    Eigen::Map<Eigen::VectorXd> unary = chain.unary (i);
+    for (std::size_t a = 0; a < states[i].size (); ++a)
+      unary (a) = local (states[i][a], static_cast<Eigen::Index> (i));
+  }
+  // T_l s_i for the candidate clusters l of node i: the moved points the stiffness (Eq. (6)) compares.
+  const auto moveNode = [&] (std::size_t i, std::vector<Eigen::Vector2d>& moved) {
+    moved.clear ();
+    const Eigen::Vector2d s = pairs.source.col (static_cast<Eigen::Index> (i));
+    for (const int l : states[i])
+      moved.push_back (motions[l].linear () * s + motions[l].translation ());
+  };
+  std::vector<Eigen::Vector2d> moved_i, moved_j;
+  if (pairs.size () > 0)
+    moveNode (0, moved_j);
+  for (std::size_t i = 0; i + 1 < pairs.size (); ++i)
+  {
+    moved_i.swap (moved_j);
+    moveNode (i + 1, moved_j);
+    const auto e = static_cast<Eigen::Index> (i);
+    const double d = (pairs.source.col (e) - pairs.source.col (e + 1)).norm ();
+    const double inverse_distance = 1.0 / std::max (d, options.min_neighbour_distance);
+    Eigen::Map<Eigen::MatrixXd> table = chain.pairwise (i);
+    for (Eigen::Index b = 0; b < table.cols (); ++b)
+      for (Eigen::Index a = 0; a < table.rows (); ++a)
+      {
+        const int k = states[i][a], l = states[i + 1][b];
+        table (a, b) = k == l ? w_same + w_inverse * inverse_distance  // Eqs. (4), (5)
+                              : w_stiffness * std::abs ((moved_i[a] - moved_j[b]).norm () - d);  // Eq. (6)
+      }
+  }
 }
 
 }  // namespace clustering

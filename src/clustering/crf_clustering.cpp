@@ -6,6 +6,7 @@
 #include <pcl_crf/crf/chain_inference.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -21,74 +22,107 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::clustering::clusterPointPairs] " + what);
 }
 
-/** The clusters each node keeps: its \a max_states best by local log-potential,
- *  of those the ones within \a margin of the best; increasing cluster order. */
-CandidateStates
-candidateStates (const Eigen::MatrixXd& local, double margin, int max_states)
+/** The clusters each node keeps: its \a max_states best by local log-potential (the
+ *  first of equal ones), of those the ones within \a margin of the best; increasing
+ *  cluster order. \a states keeps the capacity of its lists from round to round. */
+void
+candidateStates (const Eigen::MatrixXd& local, double margin, int max_states, CandidateStates& states)
 {
-  CandidateStates states (static_cast<std::size_t> (local.cols ()));
-  const auto keep = static_cast<std::size_t> (std::min<Eigen::Index> (local.rows (), max_states));
+  states.resize (static_cast<std::size_t> (local.cols ()));
+  const int clusters = static_cast<int> (local.rows ());
+  const int keep = std::min (clusters, max_states);
+  std::vector<int> best (static_cast<std::size_t> (keep) + 1);  // sorted by decreasing potential
   for (Eigen::Index i = 0; i < local.cols (); ++i)
   {
-    std::vector<int>& best = states[i];  // kept sorted by decreasing potential while scanning
-    best.reserve (keep + 1);
-    for (int l = 0; l < static_cast<int> (local.rows ()); ++l)
+    const double* column = local.data () + i * local.rows ();
+    int count = 0;
+    for (int l = 0; l < clusters; ++l)
     {
-      if (best.size () == keep && local (l, i) <= local (best.back (), i))
+      const double value = column[l];
+      if (count == keep && value <= column[best[count - 1]])
         continue;
-      auto at = std::find_if (best.begin (), best.end (), [&] (int b) { return local (l, i) > local (b, i); });
-      best.insert (at, l);
-      if (best.size () > keep)
-        best.pop_back ();
+      int at = count;  // after the ones it does not beat
+      while (at > 0 && value > column[best[at - 1]])
+        --at;
+      for (int k = std::min (count, keep - 1); k > at; --k)
+        best[k] = best[k - 1];
+      best[at] = l;
+      count = std::min (count + 1, keep);
     }
-    const double floor = local (best.front (), i) - margin;
-    const auto below = [&] (int l) { return local (l, i) < floor; };
-    best.erase (std::remove_if (best.begin (), best.end (), below), best.end ());
-    std::sort (best.begin (), best.end ());
+    const double floor = column[best[0]] - margin;
+    while (column[best[count - 1]] < floor)
+      --count;
+    std::vector<int>& kept = states[i];
+    kept.assign (best.begin (), best.begin () + count);
+    std::sort (kept.begin (), kept.end ());
   }
-  return states;
 }
 
-/** Column-wise softmax of log-potentials. */
-Eigen::MatrixXd
-columnSoftmax (const Eigen::MatrixXd& log_p)
+/** Column-wise softmax of log-potentials, in place (glibc's exp: faster here than Eigen's). */
+void
+columnSoftmax (Eigen::MatrixXd& log_p)
 {
-  Eigen::MatrixXd p = (log_p.rowwise () - log_p.colwise ().maxCoeff ()).array ().exp ().matrix ();
-  return p.array ().rowwise () / p.colwise ().sum ().array ();
+  for (Eigen::Index i = 0; i < log_p.cols (); ++i)
+  {
+    double* column = log_p.data () + i * log_p.rows ();
+    const double maximum = *std::max_element (column, column + log_p.rows ());
+    double sum = 0.0;
+    for (Eigen::Index l = 0; l < log_p.rows (); ++l)
+    {
+      column[l] = std::exp (column[l] - maximum);
+      sum += column[l];
+    }
+    for (Eigen::Index l = 0; l < log_p.rows (); ++l)
+      column[l] /= sum;
+  }
 }
 
-/** What one round of belief propagation gives, in the numbering of its clusters. */
-struct Beliefs
+/** What the rounds of clusterPointPairs () reuse (kept per thread between calls). */
+struct Workspace
 {
-  std::vector<int> labels;    // MAP
-  Eigen::MatrixXd marginals;  // S x n
-  Eigen::MatrixXd local;      // S x n local log-potentials
+  Eigen::MatrixXd scales;            // unaryScales ()
+  Eigen::MatrixXd local;             // S x n local log-potentials, then the merge test's probabilities
+  CandidateStates states;            // pruned clusters of every node
+  crf::PackedChainPotentials chain;  // their potentials
+  crf::ChainInference inference;     // sum-product and max-product
 };
 
-/** One round (Sec. IV-D) from the fit weights (S x n): motions (Eq. (3)), residuals
- *  (Eq. (2)), pruned candidate states, sum-product and max-product. */
-Beliefs
+/** One round (Sec. IV-D) for the \a motions: local log-potentials (Eq. (2)), pruned
+ *  candidate states, sum-product and max-product. Leaves the local log-potentials,
+ *  the states and the inference results in \a workspace; returns the MAP cluster of
+ *  every pair. */
+std::vector<int>
 propagate (const PointPairs& pairs, const Eigen::VectorXd& weights, const CrfClusteringParameters& parameters,
-           const Eigen::MatrixXd& fit_weights)
+           const std::vector<Rigid2d>& motions, Workspace& workspace)
 {
-  const std::vector<Rigid2d> motions = solveFits (accumulateFits (pairs, fit_weights));  // Eq. (3)
-  const Eigen::MatrixXd residuals = squaredResiduals (pairs, motions);                    // Eq. (2)
-  Beliefs beliefs;
-  beliefs.local = localLogPotentials (pairs, residuals, weights, parameters.features);
-  const CandidateStates states = candidateStates (beliefs.local, parameters.pruning_margin, parameters.max_states);
-  const crf::ChainPotentials chain =
-      chainPotentials (pairs, motions, states, beliefs.local, weights, parameters.features);
-  const crf::MarginalResult sum_product = crf::sumProduct (chain);
-  const crf::MapResult map = crf::maxProduct (chain);
-  beliefs.marginals = Eigen::MatrixXd::Zero (static_cast<Eigen::Index> (motions.size ()), pairs.source.cols ());
-  beliefs.labels.resize (pairs.size ());
+  localLogPotentials (pairs, motions, workspace.scales, weights, workspace.local);  // Eq. (2)
+  candidateStates (workspace.local, parameters.pruning_margin, parameters.max_states, workspace.states);
+  chainPotentials (pairs, motions, workspace.states, workspace.local, weights, parameters.features, workspace.chain);
+  workspace.inference.compute (workspace.chain, crf::kMapAndMarginals);
+  std::vector<int> labels (pairs.size ());
   for (std::size_t i = 0; i < pairs.size (); ++i)
+    labels[i] = workspace.states[i][workspace.inference.mapLabels ()[i]];
+  return labels;
+}
+
+/** The sum-product marginals of the clusters in \a kept (rows in that order), |kept| x n,
+ *  0 where a cluster is not a state of the node. */
+Eigen::MatrixXd
+keptMarginals (const Workspace& workspace, const std::vector<int>& kept, int cluster_count)
+{
+  std::vector<int> row (static_cast<std::size_t> (cluster_count), -1);
+  for (std::size_t k = 0; k < kept.size (); ++k)
+    row[kept[k]] = static_cast<int> (k);
+  Eigen::MatrixXd marginals = Eigen::MatrixXd::Zero (static_cast<Eigen::Index> (kept.size ()),
+                                                     static_cast<Eigen::Index> (workspace.states.size ()));
+  for (std::size_t i = 0; i < workspace.states.size (); ++i)
   {
-    for (std::size_t a = 0; a < states[i].size (); ++a)
-      beliefs.marginals (states[i][a], static_cast<Eigen::Index> (i)) = sum_product.node_marginals[i] (a);
-    beliefs.labels[i] = states[i][map.labels[i]];
+    const Eigen::Map<const Eigen::VectorXd> p = workspace.inference.nodeMarginal (i);
+    for (std::size_t a = 0; a < workspace.states[i].size (); ++a)
+      if (row[workspace.states[i][a]] >= 0)
+        marginals (row[workspace.states[i][a]], static_cast<Eigen::Index> (i)) = p (a);
   }
-  return beliefs;
+  return marginals;
 }
 
 /** Renumbers the clusters by decreasing size (ties: previous order). */
@@ -152,23 +186,48 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   result.labels = segmentByDistance (pairs.source, parameters.segment_break_distance, parameters.max_segment_points);
   int cluster_count = result.labels.back () + 1;
   result.initial_clusters = cluster_count;
-  result.marginals = oneHot (result.labels, cluster_count);
 
   // Sec. IV-D, IV-E: BP, removal of empty and ambiguous clusters (Eq. (8)), refit,
   // until the MAP labelling and the clusters stop changing.
+  // The buffers are kept per thread from call to call: after the first call, a call
+  // allocates only its result and a few small per-round matrices, so that the heap
+  // does not grow and shrink (with page faults) on every call.
+  static thread_local Workspace workspace;
+  workspace.scales = unaryScales (pairs, parameters.features);
+  std::vector<int> every;  // 0 … S − 1
   while (result.iterations < parameters.max_iterations && !result.converged)
   {
+    // Eq. (3): first the segments (hard), then the marginals of the previous round.
+    const std::vector<Rigid2d> motions = result.iterations == 0
+                                             ? fitMotions (pairs, result.labels, cluster_count)
+                                             : solveFits (accumulateFits (pairs, result.marginals));
     ++result.iterations;
-    Beliefs beliefs = propagate (pairs, weights, parameters, result.marginals);
-    const bool same_labels = beliefs.labels == result.labels;
-    const std::vector<int> kept =
-        selectClusters (parameters.merge_evidence == MergeEvidence::Local ? columnSoftmax (beliefs.local)
-                                                                          : beliefs.marginals,
-                        beliefs.labels, parameters.max_average_neff);
+    std::vector<int> labels = propagate (pairs, weights, parameters, motions, workspace);
+    const bool same_labels = labels == result.labels;
+    std::vector<int> kept;
+    if (parameters.merge_evidence == MergeEvidence::Local)
+    {
+      columnSoftmax (workspace.local);
+      kept = selectClusters (workspace.local, labels, parameters.max_average_neff);
+    }
+    else
+    {
+      every.resize (motions.size ());
+      std::iota (every.begin (), every.end (), 0);
+      kept = selectClusters (keptMarginals (workspace, every, cluster_count), labels, parameters.max_average_neff);
+    }
     result.converged = same_labels && static_cast<int> (kept.size ()) == cluster_count;
-    keepClusters (kept, beliefs.marginals, beliefs.labels);
-    result.labels.swap (beliefs.labels);
-    result.marginals.swap (beliefs.marginals);  // the next fit weights, Eq. (3)
+    // The kept clusters' marginals, renumbered and renormalised: the next fit weights (Eq. (3)).
+    result.marginals = keptMarginals (workspace, kept, cluster_count);
+    std::vector<int> renumbered (static_cast<std::size_t> (cluster_count), -1);
+    for (std::size_t k = 0; k < kept.size (); ++k)
+      renumbered[kept[k]] = static_cast<int> (k);
+    for (int& l : labels)
+      l = renumbered[l];
+    every.resize (kept.size ());
+    std::iota (every.begin (), every.end (), 0);
+    keepClusters (every, result.marginals, labels);
+    result.labels.swap (labels);
     cluster_count = static_cast<int> (kept.size ());
   }
   result.motions = solveFits (accumulateFits (pairs, result.marginals));  // Eq. (3), weighted by the marginals

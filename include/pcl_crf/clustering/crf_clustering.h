@@ -90,6 +90,10 @@ validateParameters (const CrfClusteringParameters& parameters);
  *  and the set of clusters stop changing. The static cluster is the one nearest to
  *  the odometry (Mahalanobis).
  *
+ *  The inference buffers (candidate states, packed chain, messages: a few hundred KB
+ *  for a 361-beam scan) are kept per thread from call to call, so that repeated calls
+ *  do not allocate them again.
+ *
  *  \code
  *  pcl_crf::clustering::CrfClusteringParameters parameters;
  *  const auto result = pcl_crf::clustering::clusterPointPairs (pairs, weights, parameters, &pair.odometry);
