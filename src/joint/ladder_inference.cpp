@@ -108,8 +108,8 @@ public:
     result.motions = motions_;
     result.cluster_beliefs.resize (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
-      const Small b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];
-      const Small p = (b.array () - b.maxCoeff ()).exp ().matrix ();
+      const Vector b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];  // once per run
+      const Vector p = (b.array () - b.maxCoeff ()).exp ().matrix ();
       result.cluster_beliefs.col (i) = p / p.sum ();
     }
     result.cluster_evidence = localEvidence ();
@@ -123,8 +123,8 @@ private:
     Eigen::MatrixXd evidence (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
       rungPotential (g_, i, moved (i), w_, rung_);
-      const Small r = evidenceOf (i);
-      const Small p = (r.array () - r.maxCoeff ()).exp ().matrix ();
+      const Vector r = evidenceOf (i);
+      const Vector p = (r.array () - r.maxCoeff ()).exp ().matrix ();
       evidence.col (i) = p / p.sum ();
     }
     return evidence;

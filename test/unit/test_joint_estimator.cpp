@@ -163,8 +163,9 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   std::size_t total = estimator.getOutliers ().size ();
   for (std::size_t k = 0; k < clusters.size (); ++k) {
     total += clusters[k].indices.size ();
-    if (k > 0)
+    if (k > 0) {
       EXPECT_GE (clusters[k - 1].indices.size (), clusters[k].indices.size ());
+    }
     for (int index : clusters[k].indices)
       EXPECT_NE (index, 5);
   }
