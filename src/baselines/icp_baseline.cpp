@@ -1,5 +1,6 @@
 #include <pcl_crf/baselines/icp_baseline.h>
 #include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/core/planar_transform.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
@@ -21,23 +22,6 @@ checkOptions (const ScanPair& pair, const IcpBaselineOptions& options)
   if (options.max_iterations <= 0 || !(options.max_correspondence_distance > 0.0) ||
       !(options.outlier_distance > 0.0) || !(options.transformation_epsilon >= 0.0))
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] iterations and distances must be positive");
-}
-
-Eigen::Matrix4f
-toMatrix4f (const Rigid2d& T)
-{
-  Eigen::Matrix4f M = Eigen::Matrix4f::Identity ();
-  M.topLeftCorner<2, 2> () = T.linear ().cast<float> ();
-  M.block<2, 1> (0, 3) = T.translation ().cast<float> ();
-  return M;
-}
-
-Rigid2d
-fromMatrix4f (const Eigen::Matrix4f& M)
-{
-  // Re-orthonormalise through the angle: the 2D estimator keeps the motion planar.
-  const double theta = std::atan2 (static_cast<double> (M (1, 0)), static_cast<double> (M (0, 0)));
-  return makeRigid2d (M (0, 3), M (1, 3), theta);
 }
 
 std::vector<int>
@@ -78,8 +62,8 @@ runIcpBaseline (const ScanPair& pair, const IcpBaselineOptions& options)
   icp.setMaxCorrespondenceDistance (options.max_correspondence_distance);
   icp.setTransformationEpsilon (options.transformation_epsilon);
   const Rigid2d guess = pair.odometry.T_source_target.inverse ();
-  icp.align (*aligned, toMatrix4f (guess));
-  const Rigid2d T_target_source = icp.hasConverged () ? fromMatrix4f (icp.getFinalTransformation ()) : guess;
+  icp.align (*aligned, toMatrix4<float> (guess));
+  const Rigid2d T_target_source = icp.hasConverged () ? toRigid2d (icp.getFinalTransformation ()) : guess;
 
   Prediction prediction;
   prediction.source_match = nearestNeighbourMatches (pair.source, T_target_source, target, options.outlier_distance);

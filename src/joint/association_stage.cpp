@@ -10,19 +10,6 @@ namespace joint {
 
 namespace {
 
-/** Pass 1's associations as states of the joint pass (the outlier state when the
- *  target point is not a candidate there). */
-std::vector<int>
-initialAssociation (const matching::Candidates& candidates, const std::vector<int>& first_matches)
-{
-  std::vector<int> states (first_matches.size ());
-  for (int i = 0; i < candidates.size (); ++i) {
-    const int c = first_matches[i] == kNoMatch ? -1 : candidates.find (i, first_matches[i]);
-    states[i] = c >= 0 ? c : candidates.count (i);
-  }
-  return states;
-}
-
 /** Gives every point of a cluster that moves relative to the pass's motion (by more
  *  than the overlap radius at that point) its cluster's motion as hypothesis. */
 void
@@ -85,22 +72,12 @@ jointPass (AssociationStage& stage, const matching::PreparedTarget& target, cons
            const matching::CrfMatchingModel& matcher, LadderStart& start)
 {
   const matching::CandidateParameters& parameters = matcher.parameters.candidates;
-  matching::PassGeometry& pass = stage.pass;  // preparePass, with the clusters' motions as hypotheses
-  pass.T_guess = guess.T_target_source;
-  pass.T_current = stage.T_first;
-  pass.source_guess = pass.T_guess * stage.source.points;
-  pass.source_current = pass.T_current * stage.source.points;
-  pass.segment_motions = matching::segmentMotionHypotheses (stage.source.points, pass.source_current,
-                                                            target.scan.points, target.segments,
-                                                            target.index.points, parameters.segments);
-  clusterHypotheses (start, parameters.segments, stage.source, pass);
-  stage.pass.candidates = matching::findCandidates (
-      stage.pass.source_current,
-      matching::shapeEmbedding (stage.source.shape, stage.pass.source_current, parameters.shape_position_scale),
-      stage.pass.segment_motions.translation, stage.pass.segment_motions.has_hypothesis, target.index, parameters);
+  stage.pass = matching::preparePassMotions (stage.source, target, guess.T_target_source, stage.T_first, parameters);
+  clusterHypotheses (start, parameters.segments, stage.source, stage.pass);
+  stage.pass.candidates = matching::passCandidates (stage.source, target, stage.pass, parameters);
   const std::size_t last = std::min<std::size_t> (1, matcher.stages.size () - 1);
   stage.scores = matching::scorePass (matcher.stages[last], stage.source, target.scan, stage.pass);
-  start.association = initialAssociation (stage.pass.candidates, stage.first_matches);
+  start.association = matching::matchStates (stage.pass.candidates, stage.first_matches);  // pass 1's, as states
 }
 
 crf::ChainPotentials

@@ -1,5 +1,6 @@
 #include <pcl_crf/clustering/cluster_merging.h>
 #include <pcl_crf/clustering/ego_cluster.h>
+#include <pcl_crf/clustering/point_pairs.h>
 #include <pcl_crf/clustering/scan_clustering.h>
 #include <pcl_crf/joint/joint_estimation.h>
 
@@ -38,12 +39,7 @@ pruneClusters (const LadderResult& round, const JointParameters& parameters, int
   }
   std::vector<int> kept = members.empty () ? std::vector<int>{0}
                                            : clustering::selectClusters (beliefs, labels, parameters.max_average_neff);
-  const std::vector<int> sizes = [&] {
-    std::vector<int> s (static_cast<std::size_t> (clusters), 0);
-    for (int l : labels)
-      ++s[l];
-    return s;
-  }();
+  const std::vector<int> sizes = clustering::clusterSizes (labels, clusters);
   std::vector<int> solid;
   for (int l : kept)
     if (sizes[l] >= min_points)
@@ -82,10 +78,7 @@ assemble (const LadderResult& round, const matching::Candidates& candidates, con
 {
   const int clusters = static_cast<int> (round.motions.size ());
   const int n = static_cast<int> (round.cluster.size ());
-  std::vector<int> sizes (static_cast<std::size_t> (clusters), 0);
-  for (int c : round.cluster)
-    if (c < clusters)
-      ++sizes[c];
+  const std::vector<int> sizes = clustering::clusterSizes (round.cluster, clusters);  // the outlier cluster K is left out
   std::vector<int> order (static_cast<std::size_t> (clusters));
   std::iota (order.begin (), order.end (), 0);
   std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });

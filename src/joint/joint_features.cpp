@@ -155,18 +155,5 @@ clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const 
   return f;
 }
 
-Eigen::Matrix2Xd
-moveByAll (const Eigen::Matrix2Xd& source, const std::vector<Rigid2d>& motions)
-{
-  const Eigen::Index clusters = static_cast<Eigen::Index> (motions.size ());
-  Eigen::Matrix2Xd moved (2, source.cols () * clusters);
-  for (Eigen::Index l = 0; l < clusters; ++l) {
-    const Eigen::Matrix2Xd m = motions[l] * source;
-    for (Eigen::Index i = 0; i < source.cols (); ++i)
-      moved.col (i * clusters + l) = m.col (i);
-  }
-  return moved;
-}
-
 }  // namespace joint
 }  // namespace pcl_crf

@@ -26,12 +26,11 @@ ladderTruth (const ScanPair& pair, const matching::Candidates& candidates)
 {
   LadderTruth truth;
   const int n = candidates.size ();
-  truth.association.resize (n);
+  truth.association = matching::matchStates (candidates, pair.source_match);
   std::map<int, int> cluster_of_object;  // object id → cluster, in order of appearance
   for (int i = 0; i < n; ++i) {
-    const int c = pair.source_match[i] == kNoMatch ? -1 : candidates.find (i, pair.source_match[i]);
-    truth.association[i] = c >= 0 ? c : candidates.count (i);
-    if (c >= 0 && !cluster_of_object.count (pair.source_object[i])) {
+    const bool matched = truth.association[i] < candidates.count (i);
+    if (matched && !cluster_of_object.count (pair.source_object[i])) {
       const int k = pair.objectIndex (pair.source_object[i]);
       if (k < 0)
         throw std::invalid_argument ("[pcl_crf::joint::jointNodeConditionals] pair '" + pair.name +

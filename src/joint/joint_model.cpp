@@ -85,9 +85,7 @@ validateParameters (const JointParameters& p)
     bad ("min_cluster_points must be >= 0 (0: the model's)");
   if (!(p.max_average_neff > 1.0))
     bad ("max_average_neff must be > 1");
-  if (p.inference.max_iterations < 1 || !(p.inference.damping >= 0.0 && p.inference.damping < 1.0) ||
-      p.inference.min_fit_points < 2 || !(p.inference.tolerance >= 0.0))
-    bad ("inference: max_iterations >= 1, damping in [0, 1), min_fit_points >= 2, tolerance >= 0");
+  validateLadderOptions (p.inference);
   clustering::validateParameters (p.initial_clustering);
 }
 

@@ -376,12 +376,18 @@ validate (const LadderGeometry& geometry, const crf::ChainPotentials& associatio
         initial_cluster[i] < 0 || initial_cluster[i] > static_cast<int> (motions.size ()))
       fail ("the initial state of node " + std::to_string (i) + " is out of range");
   }
+  validateLadderOptions (options);
+}
+
+}  // namespace
+
+void
+validateLadderOptions (const LadderOptions& options)
+{
   if (options.max_iterations < 1 || !(options.damping >= 0.0 && options.damping < 1.0) ||
       options.min_fit_points < 2 || !(options.tolerance >= 0.0))
     fail ("invalid options: max_iterations >= 1, damping in [0, 1), min_fit_points >= 2, tolerance >= 0");
 }
-
-}  // namespace
 
 LadderResult
 inferLadder (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,

@@ -100,6 +100,17 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd&
   return candidates;
 }
 
+std::vector<int>
+matchStates (const Candidates& candidates, const std::vector<int>& matches)
+{
+  std::vector<int> states (static_cast<std::size_t> (candidates.size ()));
+  for (int i = 0; i < candidates.size (); ++i) {
+    const int c = matches[i] == kNoMatch ? -1 : candidates.find (i, matches[i]);
+    states[i] = c >= 0 ? c : candidates.count (i);
+  }
+  return states;
+}
+
 double
 candidateRecall (const Candidates& candidates, const std::vector<int>& true_matches)
 {

@@ -28,18 +28,6 @@ struct TrainingPair
   std::vector<int> labels;
 };
 
-/** State of the true match among i's candidates, or the outlier state (the last). */
-std::vector<int>
-stateLabels (const Candidates& candidates, const std::vector<int>& truth)
-{
-  std::vector<int> labels (candidates.size ());
-  for (int i = 0; i < candidates.size (); ++i) {
-    const int c = truth[i] == kNoMatch ? -1 : candidates.find (i, truth[i]);
-    labels[i] = c >= 0 ? c : candidates.count (i);
-  }
-  return labels;
-}
-
 std::vector<TrainingPair>
 prepareTrainingPairs (const std::vector<ScanPair>& pairs, const MatchingParameters& parameters)
 {
@@ -66,7 +54,7 @@ prepareStage (std::vector<TrainingPair>& pairs, const MatchingParameters& parame
     pair.pass =
         preparePass (pair.source, pair.target, pair.guess.T_target_source, pair.T_current, parameters.candidates);
     pair.data_features = dataFeatures (pair.source, pair.target.scan, pair.pass);
-    pair.labels = stateLabels (pair.pass.candidates, pair.truth);
+    pair.labels = matchStates (pair.pass.candidates, pair.truth);
     for (int i = 0; i < pair.pass.candidates.size (); ++i) {
       matched += pair.truth[i] != kNoMatch;
       found += pair.labels[i] < pair.pass.candidates.count (i);

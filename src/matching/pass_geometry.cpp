@@ -23,19 +23,34 @@ prepareTarget (const Eigen::Matrix2Xd& target, const CandidateParameters& parame
 }
 
 PassGeometry
-preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
-             const CandidateParameters& parameters)
+preparePassMotions (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess,
+                    const Rigid2d& T_current, const CandidateParameters& parameters)
 {
   PassGeometry pass;
   pass.T_guess = T_guess;
   pass.T_current = T_current;
   pass.source_guess = T_guess * source.points;
   pass.source_current = T_current * source.points;
-  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, pass.source_current, parameters.shape_position_scale);
   pass.segment_motions = segmentMotionHypotheses (source.points, pass.source_current, target.scan.points,
                                                   target.segments, target.index.points, parameters.segments);
-  pass.candidates = findCandidates (pass.source_current, embedding, pass.segment_motions.translation,
-                                    pass.segment_motions.has_hypothesis, target.index, parameters);
+  return pass;
+}
+
+Candidates
+passCandidates (const ScanShape& source, const PreparedTarget& target, const PassGeometry& pass,
+                const CandidateParameters& parameters)
+{
+  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, pass.source_current, parameters.shape_position_scale);
+  return findCandidates (pass.source_current, embedding, pass.segment_motions.translation,
+                         pass.segment_motions.has_hypothesis, target.index, parameters);
+}
+
+PassGeometry
+preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
+             const CandidateParameters& parameters)
+{
+  PassGeometry pass = preparePassMotions (source, target, T_guess, T_current, parameters);
+  pass.candidates = passCandidates (source, target, pass, parameters);
   return pass;
 }
 

@@ -2,6 +2,7 @@
 
 #include <pcl_crf/clustering/clustering_model.h>
 #include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/crf_clusterer.h>
 
 #include <pcl/console/print.h>
@@ -15,8 +16,7 @@
 template <typename PointT> void
 pcl_crf::CRFClusterer<PointT>::setOdometry (const Eigen::Matrix4f& T_source_target, const Eigen::Matrix3d& covariance)
 {
-  const double yaw = std::atan2 (T_source_target (1, 0), T_source_target (0, 0));
-  odometry_.T_source_target = makeRigid2d (T_source_target (0, 3), T_source_target (1, 3), yaw);
+  odometry_.T_source_target = toRigid2d (T_source_target);
   odometry_.covariance = covariance;
   has_odometry_ = true;
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pcl_crf/cloud_conversion.h>
+#include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/crf_matcher.h>
 
 #include <pcl/console/print.h>
@@ -11,24 +12,6 @@
 namespace pcl_crf {
 
 namespace detail {
-
-/** \brief The planar part of a 4x4 rigid transform (rotation about z, x/y translation). */
-template <typename Scalar> Rigid2d
-toRigid2d (const Eigen::Matrix<Scalar, 4, 4>& M)
-{
-  const double theta = std::atan2 (static_cast<double> (M (1, 0)), static_cast<double> (M (0, 0)));
-  return makeRigid2d (static_cast<double> (M (0, 3)), static_cast<double> (M (1, 3)), theta);
-}
-
-/** \brief A planar rigid motion as a 4x4 transform. */
-template <typename Scalar> Eigen::Matrix<Scalar, 4, 4>
-toMatrix4 (const Rigid2d& T)
-{
-  Eigen::Matrix<Scalar, 4, 4> M = Eigen::Matrix<Scalar, 4, 4>::Identity ();
-  M.template topLeftCorner<2, 2> () = T.linear ().cast<Scalar> ();
-  M.template block<2, 1> (0, 3) = T.translation ().cast<Scalar> ();
-  return M;
-}
 
 /** \brief true when the target preparation depends on the same settings. */
 inline bool
@@ -70,7 +53,7 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 CRFMatcher<PointSource, PointTarget, Scalar>::setInitialGuess (const Matrix4& T_target_source)
 {
   guess_ = matching::MotionGuess ();
-  guess_.T_target_source = detail::toRigid2d (T_target_source);
+  guess_.T_target_source = toRigid2d (T_target_source);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
@@ -82,13 +65,13 @@ CRFMatcher<PointSource, PointTarget, Scalar>::setOdometry (const Odometry& odome
 template <typename PointSource, typename PointTarget, typename Scalar> typename CRFMatcher<PointSource, PointTarget, Scalar>::Matrix4
 CRFMatcher<PointSource, PointTarget, Scalar>::getInitialGuess () const
 {
-  return detail::toMatrix4<Scalar> (guess_.T_target_source);
+  return toMatrix4<Scalar> (guess_.T_target_source);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> typename CRFMatcher<PointSource, PointTarget, Scalar>::Matrix4
 CRFMatcher<PointSource, PointTarget, Scalar>::getTransformation () const
 {
-  return detail::toMatrix4<Scalar> (result_.T_target_source);
+  return toMatrix4<Scalar> (result_.T_target_source);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pcl_crf/cloud_conversion.h>
-#include <pcl_crf/impl/crf_matcher.hpp>  // detail::toRigid2d, detail::toMatrix4
+#include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/joint_crf_estimator.h>
 
 #include <pcl/common/transforms.h>
@@ -34,7 +34,7 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::setOdometry (const Matrix4& T_source_target,
                                                                  const Eigen::Matrix3d& covariance)
 {
-  odometry_.T_source_target = detail::toRigid2d (T_source_target);
+  odometry_.T_source_target = toRigid2d (T_source_target);
   odometry_.covariance = covariance;
   has_odometry_ = true;
 }
@@ -70,7 +70,7 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::
     }
   }
   for (const Rigid2d& T : result_.cluster_motions)
-    cluster_transformations_.push_back (detail::toMatrix4<Scalar> (T));
+    cluster_transformations_.push_back (toMatrix4<Scalar> (T));
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
@@ -84,7 +84,7 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   const Eigen::Matrix2Xd target = toMatrix2X (*target_, &target_index);
   Odometry odometry = odometry_;
   if (!has_odometry_) {
-    odometry.T_source_target = detail::toRigid2d (guess).inverse ();
+    odometry.T_source_target = toRigid2d (guess).inverse ();
     odometry.covariance = guess_covariance_;
   }
   try {
@@ -98,7 +98,7 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   }
   if (result_.static_cluster >= 0)
     storeResults (source, target, source_index, target_index);
-  final_transformation_ = transformation_ = detail::toMatrix4<Scalar> (result_.T_source_target.inverse ());
+  final_transformation_ = transformation_ = toMatrix4<Scalar> (result_.T_source_target.inverse ());
   pcl::transformPointCloud (*input_, output, final_transformation_);
   converged_ = result_.static_cluster >= 0;
 }

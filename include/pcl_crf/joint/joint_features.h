@@ -115,9 +115,5 @@ clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix
 Eigen::VectorXd
 clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const std::vector<Rigid2d>& motions);
 
-/** \brief Every source point moved by every motion: 2 x (n K), column i K + l = T_l s_i. */
-Eigen::Matrix2Xd
-moveByAll (const Eigen::Matrix2Xd& source, const std::vector<Rigid2d>& motions);
-
 }  // namespace joint
 }  // namespace pcl_crf

@@ -58,6 +58,10 @@ struct LadderOptions
   int min_fit_points = 3;
 };
 
+/** \brief \throws std::invalid_argument naming the settings out of range. */
+void
+validateLadderOptions (const LadderOptions& options);
+
 /** \brief What the ladder inference returns (MAP states and the refitted motions). */
 struct LadderResult
 {

@@ -98,6 +98,12 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd&
                 const Eigen::Matrix2Xd& segment_translation, const std::vector<bool>& has_segment_motion,
                 const TargetIndex& target, const CandidateParameters& parameters);
 
+/** \brief The chain state of every source point's match: the position of matches[i]
+ *  among i's candidates, or the outlier state (count (i)) for kNoMatch or a target
+ *  point that is not a candidate. */
+std::vector<int>
+matchStates (const Candidates& candidates, const std::vector<int>& matches);
+
 /** \brief Fraction of source points with a true match whose match is a candidate
  *  (1 when no source point has a true match). */
 double

@@ -71,5 +71,17 @@ PassGeometry
 preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
              const CandidateParameters& parameters);
 
+/** \brief preparePass without the candidates: both motions applied and the segment
+ *  motion hypotheses found, so that a caller may change the hypotheses (the joint
+ *  model gives the points of a moving cluster its motion) before passCandidates. */
+PassGeometry
+preparePassMotions (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess,
+                    const Rigid2d& T_current, const CandidateParameters& parameters);
+
+/** \brief The candidates of a pass from its motions and hypotheses (findCandidates). */
+Candidates
+passCandidates (const ScanShape& source, const PreparedTarget& target, const PassGeometry& pass,
+                const CandidateParameters& parameters);
+
 }  // namespace matching
 }  // namespace pcl_crf
