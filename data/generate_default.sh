@@ -5,8 +5,12 @@
 # Usage: data/generate_default.sh [SIMULATE_BINARY] [OUTPUT_DIR]
 #   SIMULATE_BINARY  the pcl_crf_simulate program (default: build/apps/pcl_crf_simulate
 #                    under the source root)
-#   OUTPUT_DIR       where train/ and test/ are written (default: data/default);
-#                    the two sub-folders are replaced.
+#   OUTPUT_DIR       where the splits are written (default: data/default); their
+#                    sub-folders are replaced.
+# Environment:
+#   SPLITS           space-separated NAME:SEED splits (default: "train:1001 test:2002",
+#                    the shipped ones); other seeds give fresh splits of the same
+#                    distribution (scripts/heldout_table.sh).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -25,6 +29,13 @@ common=(--pairs 30 --beams 361 --fov 180 --range 30 --noise 0.01 --dropout 0.01
         --spacing travel --travel 2,4 --odom-noise 0.1,0.05,0.02 --legs 0.5
         --name-prefix pair_)
 
-rm -rf "$out/train" "$out/test"
-"$simulate" -o "$out/train" --seed 1001 "${common[@]}"
-"$simulate" -o "$out/test" --seed 2002 "${common[@]}"
+for split in ${SPLITS:-train:1001 test:2002}; do
+  name=${split%%:*}
+  seed=${split#*:}
+  if [ -z "$name" ] || [ "$name" = "$split" ] || ! [[ "$seed" =~ ^[0-9]+$ ]]; then
+    echo "generate_default.sh: split '$split' is not NAME:SEED (SEED a non-negative integer)" >&2
+    exit 1
+  fi
+  rm -rf "${out:?}/$name"
+  "$simulate" -o "$out/$name" --seed "$seed" "${common[@]}"
+done
