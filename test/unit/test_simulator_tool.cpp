@@ -170,4 +170,82 @@ TEST (SimulatorTool, RegeneratesShippedDatasetByteIdentically)
   fs::remove_all (dir);
 }
 
+TEST (SimulatorTool, GeneratesFreshSplitsFromSeeds)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path script = fs::path (PCL_CRF_SOURCE_DIR) / "data" / "generate_default.sh";
+  const fs::path dir = freshTempDir ("sim_fresh_split");
+  std::string output;
+  ASSERT_EQ (run ("SPLITS='fresh:7' bash " + quote (script.string ()) + " " + quote (program) + " " + quote (dir.string ()),
+                  &output),
+             0)
+      << output;
+  EXPECT_FALSE (fs::exists (dir / "train"));  // only the named split
+  const auto fresh = pcl_crf::loadDataset ((dir / "fresh").string ());
+  ASSERT_EQ (fresh.size (), 30u);
+  const auto shipped = pcl_crf::loadDataset ((fs::path (PCL_CRF_SOURCE_DIR) / "data" / "default" / "test").string ());
+  EXPECT_NE (fresh[0].source, shipped[0].source);  // a new draw, not a copy
+  EXPECT_TRUE (fresh[0].source.cols () > 0 && fresh[0].source.cols () <= 361);
+
+  EXPECT_EQ (run ("SPLITS='fresh' bash " + quote (script.string ()) + " " + quote (program) + " " + quote (dir.string ()),
+                  &output),
+             1);
+  EXPECT_NE (output.find ("split 'fresh' is not NAME:SEED"), std::string::npos) << output;
+  fs::remove_all (dir);
+}
+
+/** The number in a markdown table row "| name | a | b | ..." at column \a column (1 = a). */
+double
+tableValue (const std::string& table, const std::string& name, int column)
+{
+  std::istringstream lines (table);
+  for (std::string line; std::getline (lines, line);) {
+    if (line.rfind ("| " + name + " |", 0) != 0)
+      continue;
+    std::istringstream cells (line.substr (line.find ('|', 1) + 1));
+    std::string cell;
+    for (int c = 0; c < column; ++c)
+      std::getline (cells, cell, '|');
+    return std::stod (cell);
+  }
+  return -1.0;
+}
+
+TEST (HeldoutScript, ReportsWhatEvalMeasuresPerSeedAndPooled)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const std::string apps = fs::path (program).parent_path ().string ();
+  const fs::path out = freshTempDir ("heldout");
+  const std::string script = (fs::path (PCL_CRF_SOURCE_DIR) / "scripts" / "heldout_table.sh").string ();
+  std::string table;
+  ASSERT_EQ (run ("PCL_CRF_BIN=" + quote (apps) + " SEEDS='7 8' METHODS=crf-matching OUT=" + quote (out.string ()) +
+                      " bash " + quote (script),
+                  &table),
+             0)
+      << table;
+  EXPECT_NE (table.find ("## seed_7 (30 pairs)"), std::string::npos) << table;
+  EXPECT_NE (table.find ("## pooled (60 pairs)"), std::string::npos) << table;
+  // The seed_7 row is pcl_crf_eval's own number on that split.
+  std::string eval;
+  ASSERT_EQ (run (quote (apps + "/pcl_crf_eval") + " " + quote ((out / "seed_7").string ()) +
+                      " --method crf-matching --models " +
+                      quote ((fs::path (PCL_CRF_SOURCE_DIR) / "data" / "models").string ()) + " -q --format csv",
+                  &eval),
+             0)
+      << eval;
+  const std::string key = "crf-matching,association_accuracy,fraction,";
+  const std::size_t at = eval.find (key);
+  ASSERT_NE (at, std::string::npos) << eval;
+  const double accuracy = std::stod (eval.substr (at + key.size ()));
+  const std::string seed_7 = table.substr (table.find ("## seed_7"), table.find ("## seed_8") - table.find ("## seed_7"));
+  EXPECT_NEAR (tableValue (seed_7, "crf-matching", 1), accuracy, 0.0005);
+  EXPECT_GT (accuracy, 0.5);
+  const double pooled = tableValue (table.substr (table.find ("## pooled")), "crf-matching", 1);
+  const double seed_8 = tableValue (table.substr (table.find ("## seed_8")), "crf-matching", 1);
+  EXPECT_NEAR (pooled, (accuracy + seed_8) / 2.0, 0.001);  // 30 pairs each: the pooled mean is their mean
+  EXPECT_NE (run ("PCL_CRF_BIN=" + quote (apps) + " SEEDS=x bash " + quote (script), &table), 0);
+  EXPECT_NE (table.find ("seed 'x' is not a non-negative integer"), std::string::npos) << table;
+  fs::remove_all (out);
+}
+
 }  // namespace
