@@ -27,22 +27,24 @@ out=${OUT:-$(mktemp -d)}
 [ -n "${OUT:-}" ] || trap 'rm -rf "$out"' EXIT
 mkdir -p "$out/pooled"
 
+names=()
 splits=""
 for seed in $seeds; do
   [[ "$seed" =~ ^[0-9]+$ ]] || { echo "error: seed '$seed' is not a non-negative integer" >&2; exit 1; }
+  names+=("seed_$seed")
   splits="$splits seed_$seed:$seed"
 done
-[ -n "$splits" ] || { echo "error: SEEDS is empty" >&2; exit 1; }
+[ ${#names[@]} -gt 0 ] || { echo "error: SEEDS is empty" >&2; exit 1; }
 SPLITS="$splits" data/generate_default.sh "$bin/pcl_crf_simulate" "$out" >&2
 
-# Pool the splits' pairs into one dataset (links, renamed per seed).
-for seed in $seeds; do
-  for pair in "$out/seed_$seed"/*/; do
-    ln -s "$(cd "$pair" && pwd)" "$out/pooled/${seed}_$(basename "$pair")"
+# Pool the splits' pairs into one dataset (links, renamed per split).
+for name in "${names[@]}"; do
+  for pair in "$out/$name"/*/; do
+    ln -s "$(cd "$pair" && pwd)" "$out/pooled/${name}_$(basename "$pair")"
   done
 done
 
-for split in $(for seed in $seeds; do echo "seed_$seed"; done) pooled; do
+for split in "${names[@]}" pooled; do
   echo "## $split ($(find -L "$out/$split/" -mindepth 2 -maxdepth 2 -name pair.txt | wc -l) pairs)"
   "$bin/pcl_crf_eval" "$out/$split" --method "$methods" --models "$models" -q --format csv \
       --output "$out/$split.csv"

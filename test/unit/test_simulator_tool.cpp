@@ -194,6 +194,16 @@ TEST (SimulatorTool, GeneratesFreshSplitsFromSeeds)
   fs::remove_all (dir);
 }
 
+/** The part of the script's output from "## <heading>" to the next heading (or the end). */
+std::string
+section (const std::string& output, const std::string& heading)
+{
+  const std::size_t begin = output.find ("## " + heading);
+  if (begin == std::string::npos)
+    return "";
+  return output.substr (begin, output.find ("## ", begin + 3) - begin);
+}
+
 /** The number in a markdown table row "| name | a | b | ..." at column \a column (1 = a). */
 double
 tableValue (const std::string& table, const std::string& name, int column)
@@ -237,14 +247,14 @@ TEST (HeldoutScript, ReportsWhatEvalMeasuresPerSeedAndPooled)
   const std::size_t at = eval.find (key);
   ASSERT_NE (at, std::string::npos) << eval;
   const double accuracy = std::stod (eval.substr (at + key.size ()));
-  const std::string seed_7 = table.substr (table.find ("## seed_7"), table.find ("## seed_8") - table.find ("## seed_7"));
-  EXPECT_NEAR (tableValue (seed_7, "crf-matching", 1), accuracy, 0.0005);
+  EXPECT_NEAR (tableValue (section (table, "seed_7"), "crf-matching", 1), accuracy, 0.0005);
   EXPECT_GT (accuracy, 0.5);
-  const double pooled = tableValue (table.substr (table.find ("## pooled")), "crf-matching", 1);
-  const double seed_8 = tableValue (table.substr (table.find ("## seed_8")), "crf-matching", 1);
+  const double pooled = tableValue (section (table, "pooled"), "crf-matching", 1);
+  const double seed_8 = tableValue (section (table, "seed_8"), "crf-matching", 1);
   EXPECT_NEAR (pooled, (accuracy + seed_8) / 2.0, 0.001);  // 30 pairs each: the pooled mean is their mean
-  EXPECT_NE (run ("PCL_CRF_BIN=" + quote (apps) + " SEEDS=x bash " + quote (script), &table), 0);
-  EXPECT_NE (table.find ("seed 'x' is not a non-negative integer"), std::string::npos) << table;
+  std::string output;
+  EXPECT_NE (run ("PCL_CRF_BIN=" + quote (apps) + " SEEDS=x bash " + quote (script), &output), 0);
+  EXPECT_NE (output.find ("seed 'x' is not a non-negative integer"), std::string::npos) << output;
   fs::remove_all (out);
 }
 
