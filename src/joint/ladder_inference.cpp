@@ -120,9 +120,9 @@ private:
   Eigen::MatrixXd
   localEvidence ()
   {
+    computeMotionPotentials ();  // under the final refit
     Eigen::MatrixXd evidence (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
-      rungPotential (g_, i, moved (i), w_, rung_);
       const Vector r = evidenceOf (i);
       const Vector p = (r.array () - r.maxCoeff ()).exp ().matrix ();
       evidence.col (i) = p / p.sum ();
@@ -130,13 +130,14 @@ private:
     return evidence;
   }
 
-  /** The local evidence of every cluster at point i from rung_. */
+  /** The local evidence of every cluster at point i from its rung potential. */
   Small
   evidenceOf (int i) const
   {
+    const Eigen::MatrixXd& rung = rungs_[i];
     if (options_.evidence == ClusterEvidence::MapAssociation)
-      return rung_.row (map_association_[i]).transpose ();
-    return (rung_.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
+      return rung.row (map_association_[i]).transpose ();
+    return (rung.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
   }
 
   Messages
@@ -225,11 +226,13 @@ private:
   assign (Vector& message, const Small& fresh)
   {
     const double keep = options_.damping;
+    double change = change_;  // a local: message (k) could alias change_, which would serialise the loop
     for (Eigen::Index k = 0; k < fresh.size (); ++k) {
       const double next = (1.0 - keep) * fresh (k) + keep * message (k);
-      change_ = std::max (change_, std::abs (next - message (k)));
+      change = std::max (change, std::abs (next - message (k)));
       message (k) = next;
     }
+    change_ = change;
   }
 
   /** Node i's messages read from \a in and written to \a out: the rung, then the
@@ -237,8 +240,14 @@ private:
   void
   visit (int i, const Messages& in, Messages& out, bool to_right, bool to_left)
   {
+    visit (i, in, out, to_right, to_left, associationIncoming (in, i), clusterIncoming (in, i));
+  }
+
+  /** visit () with the node's incoming messages \a a_in and \a c_in already summed. */
+  void
+  visit (int i, const Messages& in, Messages& out, bool to_right, bool to_left, const Small& a_in, const Small& c_in)
+  {
     const Eigen::MatrixXd& rung = rungs_[i];
-    const Small a_in = associationIncoming (in, i), c_in = clusterIncoming (in, i);
     Small fresh;
     maxToColumns (a_in, rung, fresh);
     assign (out.association_to_cluster[i], fresh);
@@ -263,14 +272,20 @@ private:
   void
   sweep ()
   {
-    for (int i = 0; i < n_; ++i) {
-      visit (i, messages_, messages_, true, false);
-      updateMap (i);
-    }
-    for (int i = n_ - 1; i >= 0; --i) {
-      visit (i, messages_, messages_, false, true);
-      updateMap (i);
-    }
+    for (int i = 0; i < n_; ++i)
+      visitAndUpdateMap (i, true);
+    for (int i = n_ - 1; i >= 0; --i)
+      visitAndUpdateMap (i, false);
+  }
+
+  /** A sweep's step: node i sends its messages one way, then takes its MAP states.
+   *  Its incoming chain messages are not among those it sends, so both use one sum. */
+  void
+  visitAndUpdateMap (int i, bool to_right)
+  {
+    const Small a_in = associationIncoming (messages_, i), c_in = clusterIncoming (messages_, i);
+    visit (i, messages_, messages_, to_right, !to_right, a_in, c_in);
+    updateMap (i, a_in + messages_.cluster_to_association[i], c_in + messages_.association_to_cluster[i]);
   }
 
   void
@@ -320,8 +335,16 @@ private:
   void
   updateMap (int i)
   {
-    const int a = static_cast<int> (argmax (associationIncoming (messages_, i) + messages_.cluster_to_association[i]));
-    const int c = static_cast<int> (argmax (clusterIncoming (messages_, i) + messages_.association_to_cluster[i]));
+    updateMap (i, associationIncoming (messages_, i) + messages_.cluster_to_association[i],
+               clusterIncoming (messages_, i) + messages_.association_to_cluster[i]);
+  }
+
+  /** updateMap () from node i's association and cluster beliefs. */
+  void
+  updateMap (int i, const Small& association_belief, const Small& cluster_belief)
+  {
+    const int a = static_cast<int> (argmax (association_belief));
+    const int c = static_cast<int> (argmax (cluster_belief));
     if (a == map_association_[i] && c == map_cluster_[i])
       return;
     ++changes_;
@@ -347,7 +370,6 @@ private:
   std::vector<Eigen::MatrixXd> rungs_;  // S_i x (K + 1) per point
   std::vector<Eigen::MatrixXd> edges_;  // (K + 1) x (K + 1) per chain edge
   std::vector<Rigid2d> motions_computed_;  // the motions rungs_ and edges_ hold
-  Eigen::MatrixXd rung_;  // workspace
 };
 
 void
