@@ -66,6 +66,16 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
   options.min_spacing = min_spacing;
   geometry.inverse_scales = clustering::unaryScales (clustering::makePointPairs (source, source, all), options);
   const Eigen::Index n = source.cols ();
+  const auto matches = static_cast<Eigen::Index> (candidates.targets.size ());
+  geometry.match_source.resize (2, matches);
+  geometry.match_target.resize (2, matches);
+  geometry.match_inverse_scales.resize (2, matches);
+  for (int i = 0; i < candidates.size (); ++i)
+    for (int e = candidates.offsets[i]; e < candidates.offsets[i + 1]; ++e) {
+      geometry.match_source.col (e) = source.col (i);
+      geometry.match_target.col (e) = target.col (candidates.targets[e]);
+      geometry.match_inverse_scales.col (e) = geometry.inverse_scales.col (i);
+    }
   geometry.neighbour_distance.resize (std::max<Eigen::Index> (n - 1, 0));
   for (Eigen::Index i = 0; i + 1 < n; ++i)
     geometry.neighbour_distance (i) = (source.col (i + 1) - source.col (i)).norm ();
@@ -73,32 +83,36 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
 }
 
 void
-rungClusterColumn (const LadderGeometry& geometry, int i, const Eigen::Vector2d& moved, const Eigen::VectorXd& w,
-                   int l, Eigen::MatrixXd& potential)
+updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& w, int l,
+                  std::vector<Eigen::MatrixXd>& rungs)
 {
-  const int count = geometry.candidates.count (i);
-  const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
-  for (int s = 0; s < count; ++s) {  // cluster distance
-    const int j = geometry.candidates.target (i, s);
-    const double dx = moved.x () - geometry.target (0, j), dy = moved.y () - geometry.target (1, j);
-    const double r2 = dx * dx + dy * dy;
-    potential (s, l) =
-        w (kRungSpacingResidual) * std::log1p (r2 * c_spacing) + w (kRungBeamResidual) * std::log1p (r2 * c_beam);
-  }
-  potential (count, l) = w (kRungUnmatchedCluster);
+  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b) of every match at once
+  const Eigen::Matrix2Xd moved = (motion.linear () * geometry.match_source).colwise () + motion.translation ();
+  const Eigen::ArrayXd r2 = (moved - geometry.match_target).colwise ().squaredNorm ().transpose ().array ();
+  const Eigen::ArrayXd value =
+      w (kRungSpacingResidual) * (1.0 + r2 * geometry.match_inverse_scales.row (0).transpose ().array ()).log () +
+      w (kRungBeamResidual) * (1.0 + r2 * geometry.match_inverse_scales.row (1).transpose ().array ()).log ();
+  const matching::Candidates& candidates = geometry.candidates;
+  for (int i = 0; i < candidates.size (); ++i)
+    rungs[i].col (l).head (candidates.count (i)) = value.segment (candidates.offsets[i], candidates.count (i));
 }
 
 void
-rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
-               const Eigen::VectorXd& w, Eigen::MatrixXd& potential)
+rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& w,
+                std::vector<Eigen::MatrixXd>& rungs)
 {
-  const int count = geometry.candidates.count (i);
-  const int clusters = static_cast<int> (transformed_source.cols ());
-  potential.resize (count + 1, clusters + 1);
+  const int clusters = static_cast<int> (motions.size ());
+  rungs.resize (static_cast<std::size_t> (geometry.size ()));
+  for (int i = 0; i < geometry.size (); ++i) {  // the cluster-inlier features
+    const int count = geometry.candidates.count (i);
+    Eigen::MatrixXd& rung = rungs[i];
+    rung.resize (count + 1, clusters + 1);
+    rung.row (count).setConstant (w (kRungUnmatchedCluster));
+    rung.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
+    rung (count, clusters) = 0.0;  // the reference
+  }
   for (int l = 0; l < clusters; ++l)
-    rungClusterColumn (geometry, i, transformed_source.col (l), w, l, potential);
-  potential.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
-  potential (count, clusters) = 0.0;  // the reference
+    updateRungColumn (geometry, motions[l], w, l, rungs);
 }
 
 Eigen::VectorXd

@@ -203,20 +203,17 @@ private:
         changed.push_back (l);
     if (changed.empty ())
       return;
-    rungs_.resize (static_cast<std::size_t> (n_));
+    if (first)
+      rungPotentials (g_, motions_, w_, rungs_);
+    else
+      for (int l : changed)
+        updateRungColumn (g_, motions_[l], w_, l, rungs_);
     edges_.resize (static_cast<std::size_t> (std::max (n_ - 1, 0)));
     Eigen::Matrix2Xd here = moved (0), next;
-    for (int i = 0; i < n_; ++i) {
-      if (first)
-        rungPotential (g_, i, here, w_, rungs_[i]);
-      else
-        for (int l : changed)
-          rungClusterColumn (g_, i, here.col (l), w_, l, rungs_[i]);
-      if (i + 1 < n_) {
-        next = moved (i + 1);
-        clusterEdgePotential (g_, i, here, next, w_, edges_[i]);
-        here.swap (next);
-      }
+    for (int i = 0; i + 1 < n_; ++i) {
+      next = moved (i + 1);
+      clusterEdgePotential (g_, i, here, next, w_, edges_[i]);
+      here.swap (next);
     }
     motions_computed_ = motions_;
   }

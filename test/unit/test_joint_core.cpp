@@ -204,12 +204,27 @@ TEST (JointFeatures, PotentialsEqualWeightsTimesFeatures)
     moved.col (l) = ladder.motions[l] * ladder.geometry.source.col (i);
     moved_next.col (l) = ladder.motions[l] * ladder.geometry.source.col (i + 1);
   }
-  Eigen::MatrixXd rung, edge;
-  joint::rungPotential (ladder.geometry, i, moved, w, rung);
+  std::vector<Eigen::MatrixXd> rungs;
+  Eigen::MatrixXd edge;
+  joint::rungPotentials (ladder.geometry, ladder.motions, w, rungs);
   joint::clusterEdgePotential (ladder.geometry, i, moved, moved_next, w, edge);
-  for (int s = 0; s < rung.rows (); ++s)
-    for (int l = 0; l < 3; ++l)
-      EXPECT_NEAR (rung (s, l), w.dot (joint::rungFeatures (ladder.geometry, i, s, l, ladder.motions)), 1e-12);
+  ASSERT_EQ (rungs.size (), static_cast<std::size_t> (ladder.geometry.size ()));
+  for (int p = 0; p < ladder.geometry.size (); ++p) {
+    const Eigen::MatrixXd& rung = rungs[p];
+    ASSERT_EQ (rung.rows (), ladder.geometry.associationStates (p));
+    ASSERT_EQ (rung.cols (), 3);
+    for (int s = 0; s < rung.rows (); ++s)
+      for (int l = 0; l < 3; ++l)
+        EXPECT_NEAR (rung (s, l), w.dot (joint::rungFeatures (ladder.geometry, p, s, l, ladder.motions)), 1e-12);
+  }
+  // a new motion of cluster 1 rewrites its column and only it
+  std::vector<Rigid2d> moved_motions = ladder.motions;
+  moved_motions[1] = makeRigid2d (0.3, -0.2, 0.1);
+  joint::updateRungColumn (ladder.geometry, moved_motions[1], w, 1, rungs);
+  for (int p = 0; p < ladder.geometry.size (); ++p)
+    for (int s = 0; s < rungs[p].rows (); ++s)
+      for (int l = 0; l < 3; ++l)
+        EXPECT_NEAR (rungs[p](s, l), w.dot (joint::rungFeatures (ladder.geometry, p, s, l, moved_motions)), 1e-12);
   for (int k = 0; k < 3; ++k)
     for (int l = 0; l < 3; ++l)
       EXPECT_NEAR (edge (k, l), w.dot (joint::clusterEdgeFeatures (ladder.geometry, i, k, l, ladder.motions)), 1e-12);

@@ -64,6 +64,13 @@ struct LadderGeometry
   matching::Candidates candidates;
   /** 2 x n inverse squared scales of the cluster-distance features [1/m²]. */
   Eigen::Matrix2Xd inverse_scales;
+  /** per association state that is a match, in the candidates' storage order
+   *  (Candidates::offsets): its source point [m, source frame], 2 x E … */
+  Eigen::Matrix2Xd match_source;
+  /** … its target point [m, target frame] … */
+  Eigen::Matrix2Xd match_target;
+  /** … and its source point's inverse scales [1/m²], 2 x E. */
+  Eigen::Matrix2Xd match_inverse_scales;
   /** n − 1 distances ||s_{i+1} − s_i|| [m]. */
   Eigen::VectorXd neighbour_distance;
   /** distances are clamped to at least this in the weighted neighbour feature [m]. */
@@ -86,18 +93,22 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
                     const matching::Candidates& candidates, double min_spacing = 0.01,
                     double min_neighbour_distance = 0.01);
 
-/** \brief Rung log-potential of point i: S_a x (K + 1), entry (s, l) = w · f_rung(s, l).
- *  \param[in] transformed_source 2 x K, column l = T_l s_i
+/** \brief Rung log-potentials of every point under the K motions: rungs[i] is
+ *  S_a x (K + 1) for point i, entry (s, l) = w · f_rung(s, l) (rungFeatures ()).
+ *  \param[in] motions the K cluster motions T_target_source
  */
 void
-rungPotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& transformed_source,
-               const Eigen::VectorXd& weights, Eigen::MatrixXd& potential);
+rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& weights,
+                std::vector<Eigen::MatrixXd>& rungs);
 
-/** \brief Column l (a real cluster) of rungPotential, for the point moved by T_l;
- *  \a potential must already have its size. */
+/** \brief Column l (a real cluster) of every rung of rungPotentials () under a new
+ *  motion T_l, all points in one vectorised pass with log(1 + x) for log1p (x) (the
+ *  arguments are ≥ 0: within 2e-15 in absolute value, as
+ *  clustering::localLogPotentials ()). \a rungs must already have their sizes.
+ */
 void
-rungClusterColumn (const LadderGeometry& geometry, int i, const Eigen::Vector2d& moved, const Eigen::VectorXd& weights,
-                   int l, Eigen::MatrixXd& potential);
+updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& weights, int l,
+                  std::vector<Eigen::MatrixXd>& rungs);
 
 /** \brief Rung features of point i in states (s, l), kJointWeightCount wide (zeros outside
  *  the rung block). \param[in] motions the K cluster motions T_target_source */
