@@ -66,16 +66,6 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
   options.min_spacing = min_spacing;
   geometry.inverse_scales = clustering::unaryScales (clustering::makePointPairs (source, source, all), options);
   const Eigen::Index n = source.cols ();
-  const auto matches = static_cast<Eigen::Index> (candidates.targets.size ());
-  geometry.match_source.resize (2, matches);
-  geometry.match_target.resize (2, matches);
-  geometry.match_inverse_scales.resize (2, matches);
-  for (int i = 0; i < candidates.size (); ++i)
-    for (int e = candidates.offsets[i]; e < candidates.offsets[i + 1]; ++e) {
-      geometry.match_source.col (e) = source.col (i);
-      geometry.match_target.col (e) = target.col (candidates.targets[e]);
-      geometry.match_inverse_scales.col (e) = geometry.inverse_scales.col (i);
-    }
   geometry.neighbour_distance.resize (std::max<Eigen::Index> (n - 1, 0));
   for (Eigen::Index i = 0; i + 1 < n; ++i)
     geometry.neighbour_distance (i) = (source.col (i + 1) - source.col (i)).norm ();
@@ -86,15 +76,16 @@ void
 updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& w, int l,
                   std::vector<Eigen::MatrixXd>& rungs)
 {
-  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b) of every match at once
-  const Eigen::Matrix2Xd moved = (motion.linear () * geometry.match_source).colwise () + motion.translation ();
-  const Eigen::ArrayXd r2 = (moved - geometry.match_target).colwise ().squaredNorm ().transpose ().array ();
-  const Eigen::ArrayXd value =
-      w (kRungSpacingResidual) * (1.0 + r2 * geometry.match_inverse_scales.row (0).transpose ().array ()).log () +
-      w (kRungBeamResidual) * (1.0 + r2 * geometry.match_inverse_scales.row (1).transpose ().array ()).log ();
-  const matching::Candidates& candidates = geometry.candidates;
-  for (int i = 0; i < candidates.size (); ++i)
-    rungs[i].col (l).head (candidates.count (i)) = value.segment (candidates.offsets[i], candidates.count (i));
+  const double w_spacing = w (kRungSpacingResidual), w_beam = w (kRungBeamResidual);
+  for (int i = 0; i < geometry.size (); ++i) {  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b)
+    const Eigen::Vector2d moved = motion * geometry.source.col (i);
+    const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
+    double* column = rungs[i].col (l).data ();
+    for (int s = 0; s < geometry.candidates.count (i); ++s) {
+      const double r2 = (moved - geometry.target.col (geometry.candidates.target (i, s))).squaredNorm ();
+      column[s] = w_spacing * std::log (1.0 + r2 * c_spacing) + w_beam * std::log (1.0 + r2 * c_beam);
+    }
+  }
 }
 
 void
