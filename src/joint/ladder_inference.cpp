@@ -1,5 +1,6 @@
 #include <pcl_crf/core/rigid_fit.h>
 #include <pcl_crf/joint/ladder_inference.h>
+#include <pcl_crf/joint/map_history.h>
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +91,8 @@ public:
   {
     seedFits (initial_association, initial_cluster);
     LadderResult result;
-    while (result.iterations < options_.max_iterations && !result.converged) {
+    MapHistory history;
+    while (result.iterations < options_.max_iterations && !result.converged && !result.oscillating) {
       ++result.iterations;
       changes_ = 0;
       change_ = 0.0;
@@ -102,6 +104,7 @@ public:
       for (int l = 0; l < clusters_; ++l)  // eq. 6 from the running sums of the MAP pairs
         refit (l);
       result.converged = changes_ == 0 && change_ <= options_.tolerance;
+      result.oscillating = !result.converged && history.repeats (map_association_, map_cluster_);
     }
     result.association = map_association_;
     result.cluster = map_cluster_;

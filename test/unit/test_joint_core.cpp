@@ -4,6 +4,7 @@
 #include <pcl_crf/joint/joint_features.h>
 #include <pcl_crf/joint/joint_model.h>
 #include <pcl_crf/joint/ladder_inference.h>
+#include <pcl_crf/joint/map_history.h>
 
 #include <gtest/gtest.h>
 
@@ -246,3 +247,32 @@ TEST (JointModelFile, RejectsCorruptText)
 }
 
 }  // namespace
+
+namespace pcl_crf {
+namespace {
+
+TEST (MapHistory, StopsOnlyWhenNoNodeReachesANewState)
+{
+  joint::MapHistory history;
+  EXPECT_FALSE (history.repeats ({0, 1, 2}, {0, 0, 1}));  // nothing to compare with yet
+  EXPECT_FALSE (history.repeats ({5, 1, 3}, {0, 0, 1}));  // one record before is not enough
+  EXPECT_TRUE (history.repeats ({0, 1, 2}, {0, 0, 1}));   // nodes 0 and 2 flip back: a 2-cycle
+  EXPECT_TRUE (history.repeats ({0, 1, 3}, {0, 0, 1}));   // node 0 settles, node 2 keeps flipping
+  EXPECT_FALSE (history.repeats ({0, 1, 3}, {0, 2, 1}));  // node 1 reaches a new cluster
+  // node 2's association state 2 was last held three records ago: new to the history
+  EXPECT_FALSE (history.repeats ({0, 1, 2}, {0, 2, 1}));
+  EXPECT_TRUE (history.repeats ({0, 1, 3}, {0, 2, 1}));
+  EXPECT_FALSE (history.repeats ({0, 1, 4}, {0, 2, 1}));  // a third association state of node 2
+}
+
+TEST (MapHistory, NeverRepeatsAcrossDifferentSizes)
+{
+  joint::MapHistory history;
+  history.repeats ({0, 1}, {0, 0});
+  history.repeats ({0, 1}, {0, 0});
+  EXPECT_FALSE (history.repeats ({0, 1, 2}, {0, 0, 0}));
+  EXPECT_FALSE (history.repeats ({0}, {0, 0}));  // association and cluster sizes differ
+}
+
+}  // namespace
+}  // namespace pcl_crf

@@ -80,6 +80,10 @@ struct LadderResult
   int iterations = 0;
   /** true when an iteration changed no MAP state and no message (LadderOptions::tolerance). */
   bool converged = false;
+  /** true when the iterations stopped because they oscillated: no node reached a MAP
+   *  state it had not held in the two iterations before (a few nodes flipping back
+   *  and forth with their clusters' refits, see MapHistory). */
+  bool oscillating = false;
 };
 
 /** \brief Modified loopy max-product belief propagation on the ladder of the joint
@@ -91,7 +95,8 @@ struct LadderResult
  *  iteration. (Solving after every single node, as the paper's Algorithm 1 does, lets
  *  a cluster whose first nodes have just switched pull the following nodes back to
  *  the old motion.) Stops when an iteration changes no MAP state and no message by
- *  more than the tolerance, or at the limit.
+ *  more than the tolerance, when it only alternates nodes between states they held
+ *  in the two iterations before (LadderResult::oscillating), or at the limit.
  *
  *  \code
  *  const pcl_crf::joint::LadderResult r = pcl_crf::joint::inferLadder (

@@ -1,0 +1,22 @@
+#include <pcl_crf/joint/map_history.h>
+
+namespace pcl_crf {
+namespace joint {
+
+bool
+MapHistory::repeats (const std::vector<int>& association, const std::vector<int>& cluster)
+{
+  bool same = association_[1].size () == association.size () && cluster_[1].size () == cluster.size () &&
+              association.size () == cluster.size ();
+  for (std::size_t i = 0; same && i < association.size (); ++i)
+    same = (association[i] == association_[0][i] && cluster[i] == cluster_[0][i]) ||
+           (association[i] == association_[1][i] && cluster[i] == cluster_[1][i]);
+  association_[1].swap (association_[0]);
+  cluster_[1].swap (cluster_[0]);
+  association_[0] = association;
+  cluster_[0] = cluster;
+  return same;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf
