@@ -21,19 +21,15 @@ fail (const std::string& what)
 }
 
 /** The clusters worth keeping after a round: not ambiguous (Tipaldi & Ramos eq. 8 on
- *  the local evidence of the matched points they hold) and not vacuous (fewer than
- *  min_points matched points). Unmatched points are left out of both: their evidence
- *  says nothing about the motion (a point that every motion takes out of view is as
- *  likely in any cluster). Points of a removed cluster move to their best kept one.
- *  \return true when one was removed. */
+ *  the local evidence of the points they hold) and not vacuous. Points of a
+ *  removed cluster move to their best kept one. \return true when one was removed. */
 bool
-pruneClusters (const LadderResult& round, const matching::Candidates& candidates, const JointParameters& parameters,
-               int min_points, LadderStart& next)
+pruneClusters (const LadderResult& round, const JointParameters& parameters, int min_points, LadderStart& next)
 {
   const int clusters = static_cast<int> (round.motions.size ());
-  std::vector<int> members;  // matched points in a real cluster
+  std::vector<int> members;  // points in a real cluster
   for (int i = 0; i < static_cast<int> (round.cluster.size ()); ++i)
-    if (round.cluster[i] < clusters && round.association[i] < candidates.count (i))
+    if (round.cluster[i] < clusters)
       members.push_back (i);
   Eigen::MatrixXd beliefs (clusters, static_cast<Eigen::Index> (members.size ()));
   std::vector<int> labels (members.size ());
@@ -159,7 +155,7 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
                          parameters.inference);
     ++result.rounds;
     result.iterations += round.iterations;
-    if (result.rounds >= parameters.max_rounds || !pruneClusters (round, stage.pass.candidates, parameters, min_points, start))
+    if (result.rounds >= parameters.max_rounds || !pruneClusters (round, parameters, min_points, start))
       break;
   }
   result.converged = round.converged;

@@ -33,76 +33,7 @@ stiffness (const Eigen::Vector2d& a, const Eigen::Vector2d& b, double d)
   return std::abs ((a - b).norm () - d);
 }
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2.0 * kPi;
-/** a gap no wider than this many median bearing steps is inside the view. */
-constexpr double kMissingBeams = 3.0;
-
-/** The angle from a to b counter-clockwise, in [0, 2π). */
-inline double
-counterClockwise (double a, double b)
-{
-  const double d = std::fmod (b - a, kTwoPi);
-  return d < 0.0 ? d + kTwoPi : d;
-}
-
-/** The bearings of the points other than the origin, ascending [rad]. */
-std::vector<double>
-sortedBearings (const Eigen::Matrix2Xd& points)
-{
-  std::vector<double> bearings;
-  bearings.reserve (static_cast<std::size_t> (points.cols ()));
-  for (Eigen::Index j = 0; j < points.cols (); ++j)
-    if (points.col (j).squaredNorm () > 0.0)
-      bearings.push_back (std::atan2 (points (1, j), points (0, j)));
-  std::sort (bearings.begin (), bearings.end ());
-  return bearings;
-}
-
 }  // namespace
-
-TargetView
-TargetView::of (const Eigen::Matrix2Xd& points)
-{
-  TargetView view;
-  const std::vector<double> bearings = sortedBearings (points);
-  if (bearings.size () < 2) {
-    view.gap_width = kTwoPi;  // nothing, or a single bearing, is covered
-    return view;
-  }
-  view.gap_start = bearings.back ();  // the gap across ±π first
-  view.gap_width = counterClockwise (bearings.back (), bearings.front ());
-  std::vector<double> steps;  // between consecutive bearings
-  for (std::size_t k = 1; k < bearings.size (); ++k) {
-    steps.push_back (bearings[k] - bearings[k - 1]);
-    if (steps.back () > view.gap_width) {
-      view.gap_start = bearings[k - 1];
-      view.gap_width = steps.back ();
-    }
-  }
-  // A gap of a few beams is a missing return, not the edge of the view (a 360° scan).
-  std::nth_element (steps.begin (), steps.begin () + steps.size () / 2, steps.end ());
-  if (view.gap_width <= kMissingBeams * steps[steps.size () / 2])
-    view.gap_width = 0.0;
-  view.gap_first = Eigen::Vector2d (std::cos (view.gap_start), std::sin (view.gap_start));
-  const double gap_end = view.gap_start + view.gap_width;
-  view.gap_last = Eigen::Vector2d (std::cos (gap_end), std::sin (gap_end));
-  return view;
-}
-
-bool
-TargetView::excludes (const Eigen::Vector2d& p) const
-{
-  const auto cross = [] (const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x () * b.y () - a.y () * b.x (); };
-  if (gap_width <= 0.0 || p.squaredNorm () == 0.0)
-    return false;
-  if (gap_width >= kTwoPi)  // fewer than two bearings: nothing is covered
-    return true;
-  if (gap_width <= kPi)  // inside a wedge narrower than π: left of its first ray, right of its last
-    return cross (gap_first, p) > 0.0 && cross (p, gap_last) > 0.0;
-  // the covered wedge (last → first, counter-clockwise) is narrower than π: outside it
-  return !(cross (gap_last, p) >= 0.0 && cross (p, gap_first) >= 0.0);
-}
 
 const std::vector<const char*>&
 jointWeightNames ()
@@ -112,7 +43,7 @@ jointWeightNames ()
       "association_sequence", "association_sequence_repeat", "association_sequence_skip",
       "association_outlier_switch", "association_outlier_run", "association_pairwise_distance",
       "association_pairwise_translation", "rung_spacing_residual", "rung_beam_residual",
-      "rung_matched_outlier_cluster", "rung_unmatched_cluster", "rung_unmatched_out_of_view",
+      "rung_matched_outlier_cluster", "rung_unmatched_cluster",
       "cluster_neighbour", "cluster_weighted_neighbour", "cluster_stiffness", "cluster_outlier_switch",
       "cluster_outlier_run"};
   return names;
@@ -125,7 +56,6 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
   LadderGeometry geometry;
   geometry.source = source;
   geometry.target = target;
-  geometry.target_view = TargetView::of (target);
   geometry.candidates = candidates;
   geometry.min_neighbour_distance = min_neighbour_distance;
   // The scales of CRF-Clustering's local features over every source point: the
@@ -150,13 +80,11 @@ updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const E
   for (int i = 0; i < geometry.size (); ++i) {  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b)
     const Eigen::Vector2d moved = motion * geometry.source.col (i);
     const double c_spacing = geometry.inverse_scales (0, i), c_beam = geometry.inverse_scales (1, i);
-    const int count = geometry.candidates.count (i);
     double* column = rungs[i].col (l).data ();
-    for (int s = 0; s < count; ++s) {
+    for (int s = 0; s < geometry.candidates.count (i); ++s) {
       const double r2 = (moved - geometry.target.col (geometry.candidates.target (i, s))).squaredNorm ();
       column[s] = w_spacing * std::log (1.0 + r2 * c_spacing) + w_beam * std::log (1.0 + r2 * c_beam);
     }
-    column[count] = w (kRungUnmatchedCluster) + (geometry.target_view.excludes (moved) ? w (kRungUnmatchedOutOfView) : 0.0);
   }
 }
 
@@ -185,10 +113,8 @@ rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::ve
   const int j = stateTarget (geometry.candidates, i, s);
   const bool outlier_cluster = l == static_cast<int> (motions.size ());
   if (j == kNoMatch) {
-    if (!outlier_cluster) {
+    if (!outlier_cluster)
       f (kRungUnmatchedCluster) = 1.0;
-      f (kRungUnmatchedOutOfView) = geometry.target_view.excludes (motions[l] * geometry.source.col (i)) ? 1.0 : 0.0;
-    }
   }
   else if (outlier_cluster)
     f (kRungMatchedOutlierCluster) = 1.0;

@@ -22,7 +22,7 @@ struct LadderTruth
 };
 
 LadderTruth
-ladderTruth (const ScanPair& pair, const matching::Candidates& candidates, const TargetView& view)
+ladderTruth (const ScanPair& pair, const matching::Candidates& candidates)
 {
   LadderTruth truth;
   const int n = candidates.size ();
@@ -39,19 +39,11 @@ ladderTruth (const ScanPair& pair, const matching::Candidates& candidates, const
       truth.motions.push_back (pair.objects[k].T_target_source);
     }
   }
-  // A point is in its object's cluster when matched, or when unmatched because that
-  // object's motion takes it out of the target's view; in the outlier cluster otherwise.
   const int outlier = static_cast<int> (truth.motions.size ());
-  truth.cluster.assign (n, outlier);
-  for (int i = 0; i < n; ++i) {
-    const auto object = cluster_of_object.find (pair.source_object[i]);
-    if (object == cluster_of_object.end ())
-      continue;
-    const int k = object->second;
-    if (truth.association[i] < candidates.count (i) ||
-        view.excludes (truth.motions[k] * pair.source.col (i)))
-      truth.cluster[i] = k;
-  }
+  truth.cluster.resize (n);
+  for (int i = 0; i < n; ++i)
+    truth.cluster[i] =
+        truth.association[i] < candidates.count (i) ? cluster_of_object.at (pair.source_object[i]) : outlier;
   return truth;
 }
 
@@ -161,7 +153,7 @@ jointNodeConditionals (const ScanPair& pair, const JointModel& model)
   const LadderGeometry geometry =
       makeLadderGeometry (pair.source, pair.target, stage.pass.candidates, model.initial_clustering.features.min_spacing,
                           model.initial_clustering.features.min_neighbour_distance);
-  const LadderTruth truth = ladderTruth (pair, stage.pass.candidates, geometry.target_view);
+  const LadderTruth truth = ladderTruth (pair, stage.pass.candidates);
   std::vector<crf::NodeConditional> nodes;
   nodes.reserve (2 * static_cast<std::size_t> (geometry.size ()));
   for (int i = 0; i < geometry.size (); ++i) {

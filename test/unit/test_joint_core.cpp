@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <random>
 #include <sstream>
 
@@ -230,72 +229,6 @@ TEST (JointFeatures, PotentialsEqualWeightsTimesFeatures)
   for (int k = 0; k < 3; ++k)
     for (int l = 0; l < 3; ++l)
       EXPECT_NEAR (edge (k, l), w.dot (joint::clusterEdgeFeatures (ladder.geometry, i, k, l, ladder.motions)), 1e-12);
-  // turned half a turn, every point leaves the target's view (all at y > 0): the
-  // unmatched state of cluster 1 gains the out-of-view weight
-  moved_motions[1] = makeRigid2d (0.0, 0.0, 3.0);
-  joint::updateRungColumn (ladder.geometry, moved_motions[1], w, 1, rungs);
-  for (int p = 0; p < ladder.geometry.size (); ++p) {
-    const int unmatched = ladder.geometry.candidates.count (p);
-    EXPECT_EQ (joint::rungFeatures (ladder.geometry, p, unmatched, 1, moved_motions) (joint::kRungUnmatchedOutOfView), 1.0);
-    EXPECT_EQ (joint::rungFeatures (ladder.geometry, p, unmatched, 0, moved_motions) (joint::kRungUnmatchedOutOfView), 0.0);
-    EXPECT_NEAR (rungs[p](unmatched, 1), w (joint::kRungUnmatchedCluster) + w (joint::kRungUnmatchedOutOfView), 1e-12);
-    for (int s = 0; s < rungs[p].rows (); ++s)
-      EXPECT_NEAR (rungs[p](s, 1), w.dot (joint::rungFeatures (ladder.geometry, p, s, 1, moved_motions)), 1e-12);
-  }
-}
-
-/** A scan's points at the given bearings [deg], each 4 m away. */
-Eigen::Matrix2Xd
-pointsAtBearings (double first, double last, double step)
-{
-  const int count = static_cast<int> (std::round ((last - first) / step)) + 1;
-  Eigen::Matrix2Xd points (2, count);
-  for (int k = 0; k < count; ++k) {
-    const double bearing = (first + k * step) * M_PI / 180.0;
-    points.col (k) = 4.0 * Eigen::Vector2d (std::cos (bearing), std::sin (bearing));
-  }
-  return points;
-}
-
-Eigen::Vector2d
-atBearing (double degrees)
-{
-  return Eigen::Vector2d (std::cos (degrees * M_PI / 180.0), std::sin (degrees * M_PI / 180.0));
-}
-
-TEST (TargetView, ExcludesBearingsOutsideAForwardScan)
-{
-  const joint::TargetView view = joint::TargetView::of (pointsAtBearings (-90.0, 90.0, 0.5));  // a SICK LMS
-  EXPECT_NEAR (view.gap_width, M_PI, 1e-9);
-  for (double inside : {-89.9, -45.0, 0.0, 30.25, 89.9})
-    EXPECT_FALSE (view.excludes (7.0 * atBearing (inside))) << inside << " deg";
-  for (double outside : {-179.0, -90.5, 90.5, 135.0, 180.0})
-    EXPECT_TRUE (view.excludes (0.5 * atBearing (outside))) << outside << " deg";
-  EXPECT_FALSE (view.excludes (Eigen::Vector2d::Zero ()));  // the sensor itself
-}
-
-TEST (TargetView, HandlesWideViewsBackwardViewsAndFullCircles)
-{
-  const joint::TargetView hokuyo = joint::TargetView::of (pointsAtBearings (-135.0, 135.0, 0.25));
-  EXPECT_NEAR (hokuyo.gap_width, M_PI / 2.0, 1e-9);
-  EXPECT_FALSE (hokuyo.excludes (atBearing (-120.0)));
-  EXPECT_TRUE (hokuyo.excludes (atBearing (-150.0)));
-  EXPECT_TRUE (hokuyo.excludes (atBearing (180.0)));
-
-  const joint::TargetView backwards = joint::TargetView::of (pointsAtBearings (100.0, 260.0, 1.0));  // across ±π
-  EXPECT_NEAR (backwards.gap_width, 200.0 * M_PI / 180.0, 1e-9);
-  EXPECT_FALSE (backwards.excludes (atBearing (180.0)));
-  EXPECT_FALSE (backwards.excludes (atBearing (-110.0)));
-  EXPECT_TRUE (backwards.excludes (atBearing (0.0)));
-  EXPECT_TRUE (backwards.excludes (atBearing (95.0)));
-
-  Eigen::Matrix2Xd circle = pointsAtBearings (-180.0, 179.0, 1.0);
-  circle.col (10).setZero ();  // a point at the origin has no bearing: two missing beams leave a 2° gap
-  circle.col (11) = circle.col (12);
-  EXPECT_EQ (joint::TargetView::of (circle).gap_width, 0.0);  // a missing return is not the edge of the view
-  EXPECT_FALSE (joint::TargetView::of (circle).excludes (atBearing (-169.0)));
-
-  EXPECT_TRUE (joint::TargetView::of (Eigen::Matrix2Xd (2, 0)).excludes (atBearing (0.0)));  // an empty scan sees nothing
 }
 
 TEST (JointModelFile, RejectsCorruptText)

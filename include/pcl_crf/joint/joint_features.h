@@ -25,11 +25,7 @@ namespace joint {
  *  - cluster inlier: the consistency of the two chains, an indicator for "matched but
  *    in the outlier cluster" (its weight is the outlier threshold) and one for
  *    "unmatched but in a real cluster"; an unmatched point in the outlier cluster is
- *    the reference (0), so that the rung never rewards giving up a match;
- *  - cluster out of view: "unmatched, in a real cluster l, and T_l s_i falls outside the
- *    target scan's field of view" (TargetView). A point that leaves the sensor's view
- *    cannot be matched, so its missing match is evidence for the cluster whose motion
- *    takes it out of view rather than for the outlier cluster.
+ *    the reference (0), so that the rung never rewards giving up a match.
  *  The clustering pairwise features between x^c_i and x^c_{i+1} (d = ||s_{i+1} − s_i||):
  *  neighbour [k = l], weighted neighbour [k = l] / max(d, d_min), neighbour stiffness
  *  | ||T_k s_i − T_l s_{i+1}|| − d |, and pairwise outlier (exactly one / both in
@@ -44,7 +40,6 @@ enum JointWeight : int
   kRungBeamResidual,
   kRungMatchedOutlierCluster,
   kRungUnmatchedCluster,
-  kRungUnmatchedOutOfView,
   // clustering chain x^c_i — x^c_{i+1}
   kClusterNeighbour,
   kClusterWeightedNeighbour,
@@ -58,29 +53,6 @@ enum JointWeight : int
 const std::vector<const char*>&
 jointWeightNames ();
 
-/** \brief The bearings a scan covers, as seen from its sensor at the origin: the
- *  complement of the widest angular gap between consecutive points (around the
- *  circle). No sensor description is needed, and a field of view that straddles ±π
- *  works as well as one centred on the x axis.
- */
-struct TargetView
-{
-  /** bearing where the uncovered gap starts [rad, (−π, π]]. */
-  double gap_start = 0.0;
-  /** angular width of the uncovered gap [rad, 0 … 2π]; 0: every bearing is covered. */
-  double gap_width = 0.0;
-  /** unit vectors at the gap's first and last bearing (the test needs no atan2). */
-  Eigen::Vector2d gap_first = Eigen::Vector2d::UnitX (), gap_last = Eigen::Vector2d::UnitX ();
-
-  /** \brief The view of a scan (2 x n points, sensor frame); empty scans cover nothing. */
-  static TargetView
-  of (const Eigen::Matrix2Xd& points);
-
-  /** \brief True when point p (sensor frame) lies at a bearing strictly inside the gap. */
-  bool
-  excludes (const Eigen::Vector2d& p) const;
-};
-
 /** \brief The geometry the rung and clustering features read, fixed for one scan pair. */
 struct LadderGeometry
 {
@@ -88,8 +60,6 @@ struct LadderGeometry
   Eigen::Matrix2Xd source;
   /** target points [m, target frame]. */
   Eigen::Matrix2Xd target;
-  /** the bearings the target scan covers (the out-of-view feature). */
-  TargetView target_view;
   /** association states of every source point: its candidates, then the outlier state. */
   matching::Candidates candidates;
   /** 2 x n inverse squared scales of the cluster-distance features [1/m²]. */
