@@ -2,8 +2,11 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace clustering {
@@ -30,17 +33,25 @@ odometryMahalanobis (const Rigid2d& T_target_source, const Odometry& odometry)
 }
 
 int
-selectStaticCluster (const std::vector<Rigid2d>& motions, const Odometry& odometry)
+selectStaticCluster (const std::vector<Rigid2d>& motions, const Odometry& odometry, const std::vector<int>& sizes)
 {
+  if (!sizes.empty () && sizes.size () != motions.size ())
+    throw std::invalid_argument ("[pcl_crf::clustering::selectStaticCluster] " + std::to_string (sizes.size ()) +
+                                 " cluster sizes for " + std::to_string (motions.size ()) + " motions");
+  const bool with_prior = std::any_of (sizes.begin (), sizes.end (), [] (int n) { return n > 0; });
   int best = -1;
-  double best_distance = std::numeric_limits<double>::infinity ();
+  double best_score = std::numeric_limits<double>::infinity ();
   for (std::size_t l = 0; l < motions.size (); ++l)
   {
-    const double d = odometryMahalanobis (motions[l], odometry);
-    if (best < 0 || d < best_distance)
+    if (with_prior && sizes[l] <= 0)
+      continue;
+    const double d2 = odometryMahalanobis (motions[l], odometry);
+    // −log of p(odometry | T_l) p(static = l), up to a constant
+    const double score = with_prior ? 0.5 * d2 - std::log (static_cast<double> (sizes[l])) : d2;
+    if (best < 0 || score < best_score)
     {
       best = static_cast<int> (l);
-      best_distance = d;
+      best_score = score;
     }
   }
   return best;

@@ -98,7 +98,7 @@ assemble (const LadderResult& round, const matching::Candidates& candidates, con
     else
       result.outliers.push_back (i);
   }
-  result.static_cluster = clustering::selectStaticCluster (result.cluster_motions, odometry);
+  result.static_cluster = clustering::selectStaticCluster (result.cluster_motions, odometry, result.cluster_sizes);
   result.T_source_target =
       result.static_cluster >= 0 ? result.cluster_motions[result.static_cluster].inverse () : odometry.T_source_target;
 }

@@ -114,6 +114,27 @@ TEST (ClusteringEgo, StaticClusterIsTheMahalanobisNearestToOdometry)
                1e-6);
 }
 
+TEST (ClusteringEgo, ClusterSizesArePriorOfTheStaticWorld)
+{
+  // A loose odometry ("not moving", σ 1 m, 0.5 rad), as a recording without odometry
+  // has: the world split into a large cluster 0.05 m off (d² = 0.0025) and a small one
+  // 0.01 m off (d² = 1e-4). ½ d² − log n: 0.00125 − log 200 = −5.297 against
+  // 0.00005 − log 20 = −2.996, so the large one; without sizes, the nearer one.
+  Odometry odometry;
+  odometry.covariance = Eigen::Vector3d (1.0, 1.0, 0.25).asDiagonal ();
+  const Rigid2d large = makeRigid2d (0.05, 0.0, 0.0).inverse (), small = makeRigid2d (0.01, 0.0, 0.0).inverse ();
+  EXPECT_EQ (selectStaticCluster ({small, large}, odometry), 0);
+  EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {20, 200}), 1);
+  // A tight odometry (σ 0.01 m): 0.05 m off is d² = 25, ½ d² = 12.5 outweighs
+  // log(200 / 20) = 2.3, so the odometry decides.
+  odometry.covariance = Eigen::Vector3d (1e-4, 1e-4, 1e-4).asDiagonal ();
+  EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {20, 200}), 0);
+  // An empty cluster is never the world while another has points; all empty: no prior.
+  EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {0, 5}), 1);
+  EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {0, 0}), 0);
+  EXPECT_THROW (selectStaticCluster ({small, large}, odometry, {3}), std::invalid_argument);
+}
+
 TEST (ClusteringFits, HardAndSoftFitsRecoverKnownMotions)
 {
   const Rigid2d car = makeRigid2d (1.5, -0.3, 0.2), world = makeRigid2d (-3.0, 0.1, -0.05);
