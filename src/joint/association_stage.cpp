@@ -59,6 +59,12 @@ initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
   start.motions = scan.motions;
   if (start.motions.empty ())  // nothing associated: one cluster with pass 1's motion
     start.motions.push_back (stage.T_first);
+  // The static world starts from pass 1's motion, CRF-Matching's robust point-to-line
+  // fit with the odometry prior, rather than from CRF-Clustering's point-to-point fit
+  // of the same matches, which slides along walls when the scans are far apart (and
+  // the ladder's refits would follow it).
+  if (scan.static_cluster >= 0 && scan.static_cluster < static_cast<int> (start.motions.size ()))
+    start.motions[scan.static_cluster] = stage.T_first;
   const int outlier = static_cast<int> (start.motions.size ());
   start.cluster.resize (scan.source_cluster.size ());
   for (std::size_t i = 0; i < scan.source_cluster.size (); ++i)

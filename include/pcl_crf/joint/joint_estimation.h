@@ -82,8 +82,9 @@ firstAssociationPass (const Eigen::Matrix2Xd& source, const matching::PreparedTa
                       const matching::MotionGuess& guess, const matching::CrfMatchingModel& matcher);
 
 /** \brief The initial clusters: CRF-Clustering (the model's initial_clustering) of
- *  pass 1's associations; unassociated points start in the outlier cluster, and
- *  start.association is left empty (see jointPass). */
+ *  pass 1's associations; unassociated points start in the outlier cluster, the
+ *  static world's cluster (nearest to the odometry) starts from pass 1's motion
+ *  stage.T_first, and start.association is left empty (see jointPass). */
 LadderStart
 initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const AssociationStage& stage,
                  const JointModel& model, const clustering::CrfClusteringParameters& parameters,
