@@ -232,9 +232,7 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   }
   result.motions = solveFits (accumulateFits (pairs, result.marginals));  // Eq. (3), weighted by the marginals
   sortBySize (result);
-  result.static_cluster = odometry ? selectStaticCluster (result.motions, *odometry,
-                                                                clusterSizes (result.labels, static_cast<int> (result.motions.size ())))
-                                    : 0;
+  result.static_cluster = odometry ? selectStaticCluster (result.motions, *odometry, result.sizes) : 0;
   return result;
 }
 

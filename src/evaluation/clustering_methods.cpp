@@ -156,8 +156,7 @@ public:
     const std::vector<int> matches = associations_ (pair);
     const clustering::PointPairs pairs = clustering::makePointPairs (pair.source, pair.target, matches);
     const clustering::MotionKMeansResult result = clustering::clusterKMeans (pairs, parameters_);
-    const int world = clustering::selectStaticCluster (
-        result.motions, pair.odometry, clustering::clusterSizes (result.labels, static_cast<int> (result.motions.size ())));
+    const int world = clustering::selectStaticCluster (result.motions, pair.odometry, result.sizes);
     Prediction prediction = clustering::makePrediction (pair, pairs, result.labels, result.motions, world,
                                                         UnpairedLabelling::NearestSegmentNeighbour, kBreakDistance);
     if (report_)

@@ -63,7 +63,7 @@ initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
   // fit with the odometry prior, rather than from CRF-Clustering's point-to-point fit
   // of the same matches, which slides along walls when the scans are far apart (and
   // the ladder's refits would follow it).
-  if (scan.static_cluster >= 0 && scan.static_cluster < static_cast<int> (start.motions.size ()))
+  if (scan.static_cluster >= 0)
     start.motions[scan.static_cluster] = stage.T_first;
   const int outlier = static_cast<int> (start.motions.size ());
   start.cluster.resize (scan.source_cluster.size ());

@@ -66,7 +66,7 @@ struct CrfClusteringResult
   std::vector<Rigid2d> motions;
   /** pairs labelled with each cluster. */
   std::vector<int> sizes;
-  /** the static world (nearest to the odometry, else the largest cluster), or −1. */
+  /** the static world (selectStaticCluster with the cluster sizes; without odometry the largest cluster), or −1. */
   int static_cluster = -1;
   /** clusters of the initial over-segmentation. */
   int initial_clusters = 0;
@@ -87,8 +87,9 @@ validateParameters (const CrfClusteringParameters& parameters);
  *  the marginals) → local and pairwise features (Eqs. (2), (4)–(6)) → exact
  *  sum-product marginals and max-product MAP on the chain → removal of clusters left
  *  without a MAP point and of ambiguous clusters (Eq. (8)), until the MAP labelling
- *  and the set of clusters stop changing. The static cluster is the one nearest to
- *  the odometry (Mahalanobis).
+ *  and the set of clusters stop changing. The static cluster is the most probable
+ *  under the odometry (Mahalanobis) and a prior proportional to cluster size
+ *  (selectStaticCluster).
  *
  *  The inference buffers (candidate states, packed chain, messages: a few hundred KB
  *  for a 361-beam scan) are kept per thread from call to call, so that repeated calls

@@ -33,7 +33,7 @@ struct JointResult
   std::vector<Rigid2d> cluster_motions;
   /** per cluster: its number of source points. */
   std::vector<int> cluster_sizes;
-  /** the static world (nearest to the odometry in Mahalanobis distance), or −1. */
+  /** the static world (clustering::selectStaticCluster with the cluster sizes), or −1. */
   int static_cluster = -1;
   /** the sensor's motion: its pose at the target time in the source frame
    *  (the inverse of the static world's motion; the odometry without clusters). */
