@@ -44,6 +44,12 @@ KnnIndex::size () const
   return impl_->points.cols ();
 }
 
+const Eigen::MatrixXd&
+KnnIndex::points () const
+{
+  return impl_->points;
+}
+
 KnnIndex::Result
 KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
 {

@@ -4,6 +4,7 @@
 #include <pcl_crf/matching/scan_matching.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace pcl_crf {
 namespace joint {
@@ -38,10 +39,11 @@ firstAssociationPass (const Eigen::Matrix2Xd& source, const matching::PreparedTa
 {
   AssociationStage stage;
   stage.source = matching::describeScan (source);
-  const matching::PassResult first = matching::runPass (stage.source, target, guess, guess.T_target_source,
-                                                        matcher.stages.front (), matcher.parameters);
-  stage.first_matches = first.matches;
+  matching::PassResult first = matching::runPass (stage.source, target, guess, guess.T_target_source,
+                                                  matcher.stages.front (), matcher.parameters);
+  stage.first_matches = std::move (first.matches);
   stage.T_first = first.T_estimate;
+  stage.first_shape_neighbours = std::move (first.geometry.shape_neighbours);
   return stage;
 }
 
@@ -78,9 +80,10 @@ jointPass (AssociationStage& stage, const matching::PreparedTarget& target, cons
            const matching::CrfMatchingModel& matcher, LadderStart& start)
 {
   const matching::CandidateParameters& parameters = matcher.parameters.candidates;
-  stage.pass = matching::preparePassMotions (stage.source, target, guess.T_target_source, stage.T_first, parameters);
+  stage.pass = matching::preparePassMotions (stage.source, target, guess.T_target_source, stage.T_first, parameters,
+                                             &stage.first_shape_neighbours);
   clusterHypotheses (start, parameters.segments, stage.source, stage.pass);
-  stage.pass.candidates = matching::passCandidates (stage.source, target, stage.pass, parameters);
+  stage.pass.candidates = matching::passCandidates (target, stage.pass, parameters);
   const std::size_t last = std::min<std::size_t> (1, matcher.stages.size () - 1);
   stage.scores = matching::scorePass (matcher.stages[last], stage.source, target.scan, stage.pass);
   start.association = matching::matchStates (stage.pass.candidates, stage.first_matches);  // pass 1's, as states

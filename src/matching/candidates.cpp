@@ -20,15 +20,16 @@ usesPosition (double position_scale)
   return position_scale > 0.0 && std::isfinite (position_scale);
 }
 
-/** Appends the neighbours in column i of \a knn that are not yet candidates of the last point. */
+/** Appends the first \a rows neighbours in column i of \a indices that are not yet
+ *  candidates of the last point. */
 void
-appendNew (const KnnIndex::Result& knn, Eigen::Index i, Candidates& candidates)
+appendNew (const Eigen::MatrixXi& indices, Eigen::Index rows, Eigen::Index i, Candidates& candidates)
 {
-  if (i < 0 || i >= knn.indices.cols ())
+  if (i < 0 || i >= indices.cols ())
     return;
   const auto begin = candidates.targets.begin () + candidates.offsets.back ();
-  for (Eigen::Index r = 0; r < knn.indices.rows (); ++r) {
-    const int j = knn.indices (r, i);
+  for (Eigen::Index r = 0; r < std::min (rows, indices.rows ()); ++r) {
+    const int j = indices (r, i);
     if (j >= 0 && std::find (begin, candidates.targets.end (), j) == candidates.targets.end ())
       candidates.targets.push_back (j);
   }
@@ -66,7 +67,7 @@ shapeEmbedding (const Eigen::MatrixXd& shape, const Eigen::Matrix2Xd& points, do
 }
 
 Candidates
-findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd& source_embedding,
+findCandidates (const Eigen::Matrix2Xd& source_in_target, const ShapeNeighbours& shape_neighbours,
                 const Eigen::Matrix2Xd& segment_translation, const std::vector<bool>& has_segment_motion,
                 const TargetIndex& target, const CandidateParameters& parameters)
 {
@@ -75,11 +76,9 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd&
   candidates.offsets.reserve (n + 1);
   candidates.targets.reserve (
       n * (parameters.guess_neighbours + parameters.shape_neighbours + parameters.segments.neighbours));
-  KnnIndex::Result by_guess, by_shape, by_segment;
+  KnnIndex::Result by_guess, by_segment;
   if (parameters.guess_neighbours > 0)
     by_guess = target.points.search (source_in_target, parameters.guess_neighbours);
-  if (parameters.shape_neighbours > 0)
-    by_shape = target.shapes.search (source_embedding, parameters.shape_neighbours);
   // Points with a segment hypothesis, moved by it, as one compact batch.
   std::vector<Eigen::Index> segment_column (static_cast<std::size_t> (n), -1);
   Eigen::Matrix2Xd moved (2, n);
@@ -92,9 +91,9 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd&
   if (parameters.segments.neighbours > 0 && moved_count > 0)
     by_segment = target.points.search (moved.leftCols (moved_count), parameters.segments.neighbours);
   for (Eigen::Index i = 0; i < n; ++i) {
-    appendNew (by_guess, i, candidates);
-    appendNew (by_shape, i, candidates);
-    appendNew (by_segment, segment_column[i], candidates);
+    appendNew (by_guess.indices, by_guess.indices.rows (), i, candidates);
+    appendNew (shape_neighbours.indices, parameters.shape_neighbours, i, candidates);
+    appendNew (by_segment.indices, by_segment.indices.rows (), segment_column[i], candidates);
     candidates.offsets.push_back (static_cast<int> (candidates.targets.size ()));
   }
   return candidates;

@@ -22,9 +22,27 @@ prepareTarget (const Eigen::Matrix2Xd& target, const CandidateParameters& parame
   return prepared;
 }
 
+namespace {
+
+/** The shape neighbours of the source at T_current, from \a earlier where it proves them. */
+ShapeNeighbours
+shapeNeighboursAt (const ScanShape& source, const PreparedTarget& target, const Eigen::Matrix2Xd& source_current,
+                   const CandidateParameters& parameters, const ShapeNeighbours* earlier)
+{
+  const int k = parameters.shape_neighbours;
+  if (k <= 0)
+    return {};
+  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, source_current, parameters.shape_position_scale);
+  if (earlier != nullptr && earlier->used () >= k && earlier->queries.cols () == embedding.cols ())
+    return updateShapeNeighbours (*earlier, embedding, target.index.shapes, k);
+  return searchShapeNeighbours (embedding, target.index.shapes, k);
+}
+
+}  // namespace
+
 PassGeometry
 preparePassMotions (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess,
-                    const Rigid2d& T_current, const CandidateParameters& parameters)
+                    const Rigid2d& T_current, const CandidateParameters& parameters, const ShapeNeighbours* earlier)
 {
   PassGeometry pass;
   pass.T_guess = T_guess;
@@ -33,24 +51,24 @@ preparePassMotions (const ScanShape& source, const PreparedTarget& target, const
   pass.source_current = T_current * source.points;
   pass.segment_motions = segmentMotionHypotheses (source.points, pass.source_current, target.scan.points,
                                                   target.segments, target.index.points, parameters.segments);
+  pass.shape_neighbours = shapeNeighboursAt (source, target, pass.source_current, parameters, earlier);
   return pass;
 }
 
 Candidates
-passCandidates (const ScanShape& source, const PreparedTarget& target, const PassGeometry& pass,
+passCandidates (const PreparedTarget& target, const PassGeometry& pass,
                 const CandidateParameters& parameters)
 {
-  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, pass.source_current, parameters.shape_position_scale);
-  return findCandidates (pass.source_current, embedding, pass.segment_motions.translation,
+  return findCandidates (pass.source_current, pass.shape_neighbours, pass.segment_motions.translation,
                          pass.segment_motions.has_hypothesis, target.index, parameters);
 }
 
 PassGeometry
 preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
-             const CandidateParameters& parameters)
+             const CandidateParameters& parameters, const ShapeNeighbours* earlier)
 {
-  PassGeometry pass = preparePassMotions (source, target, T_guess, T_current, parameters);
-  pass.candidates = passCandidates (source, target, pass, parameters);
+  PassGeometry pass = preparePassMotions (source, target, T_guess, T_current, parameters, earlier);
+  pass.candidates = passCandidates (target, pass, parameters);
   return pass;
 }
 

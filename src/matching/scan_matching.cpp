@@ -52,10 +52,10 @@ checkModel (const CrfMatchingModel& model)
 
 PassResult
 runPass (const ScanShape& source, const PreparedTarget& target, const MotionGuess& guess, const Rigid2d& T_current,
-         const StageModel& stage, const MatchingParameters& parameters)
+         const StageModel& stage, const MatchingParameters& parameters, const ShapeNeighbours* earlier)
 {
   PassResult pass;
-  pass.geometry = preparePass (source, target, guess.T_target_source, T_current, parameters.candidates);
+  pass.geometry = preparePass (source, target, guess.T_target_source, T_current, parameters.candidates, earlier);
   pass.scores = scorePass (stage, source, target.scan, pass.geometry);
   const crf::ChainPotentials chain = matchingChainPotentials (source, target.scan, pass.geometry, pass.scores,
                                                               stage.crf_weights, parameters.residual_scale);
@@ -83,7 +83,8 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
   PassResult pass;
   for (int k = 0; k < passes; ++k) {
     const StageModel& stage = model.stages[std::min<std::size_t> (k, model.stages.size () - 1)];
-    pass = runPass (source_scan, target, guess, result.T_target_source, stage, model.parameters);
+    pass = runPass (source_scan, target, guess, result.T_target_source, stage, model.parameters,
+                    k > 0 ? &pass.geometry.shape_neighbours : nullptr);
     result.T_target_source = pass.T_estimate;
   }
   result.passes = passes;

@@ -104,6 +104,57 @@ TEST (MatchingCandidates, ContainTheTrueMatchOfARoomUnderOdometryError)
   EXPECT_LT (m::candidateRecall (narrow.candidates, pair.source_match), 0.5);
 }
 
+TEST (MatchingShapeNeighbours, ReusedNeighboursEqualAFreshSearch)
+{
+  // Random 9-D embeddings: moved a little, most columns are proven from the earlier
+  // search; moved far, none is, and both must equal a fresh search of the same k.
+  std::mt19937 rng (11);
+  std::normal_distribution<double> normal (0.0, 1.0);
+  auto random = [&] (int rows, int cols) {
+    Eigen::MatrixXd x (rows, cols);
+    for (Eigen::Index k = 0; k < x.size (); ++k)
+      x (k) = normal (rng);
+    return x;
+  };
+  const int dimension = m::shapeEmbeddingDimension (), k = 2;
+  const pcl_crf::KnnIndex shapes (random (dimension, 400));
+  const Eigen::MatrixXd before = random (dimension, 300);
+  const m::ShapeNeighbours earlier = m::searchShapeNeighbours (before, shapes, k);
+  ASSERT_EQ (earlier.indices.rows (), k + 1);
+  EXPECT_EQ (earlier.used (), k);
+  for (double step : {0.001, 0.01, 0.1, 3.0}) {
+    const Eigen::MatrixXd after = before + step * random (dimension, 300);
+    const m::ShapeNeighbours reused = m::updateShapeNeighbours (earlier, after, shapes, k);
+    const pcl_crf::KnnIndex::Result fresh = shapes.search (after, k);
+    EXPECT_EQ (reused.indices.topRows (k), fresh.indices) << "step " << step;
+    // Columns proven from the earlier search keep a bound below their own k + 1-th distance.
+    const pcl_crf::KnnIndex::Result spare = shapes.search (after, k + 1);
+    const int proven = static_cast<int> (
+        (reused.outside_distance.array () < spare.squared_distances.row (k).transpose ().array ().sqrt () - 1e-9).count ());
+    if (step <= 0.01)
+      EXPECT_GT (proven, 200) << "step " << step;  // 233 and more of 300 here
+    if (step >= 3.0)
+      EXPECT_EQ (proven, 0);
+    // The bound holds: no target point outside a column is nearer than outside_distance.
+    for (Eigen::Index i = 0; i < after.cols (); ++i)
+      for (Eigen::Index j = 0; j < shapes.size (); ++j)
+        if ((reused.indices.col (i).array () != j).all ())
+          EXPECT_GE ((after.col (i) - shapes.points ().col (j)).norm (), reused.outside_distance (i) - 1e-12);
+    // A second move chains from the first.
+    const Eigen::MatrixXd again = after + 0.01 * random (dimension, 300);
+    EXPECT_EQ (m::updateShapeNeighbours (reused, again, shapes, k).indices.topRows (k), shapes.search (again, k).indices);
+  }
+  // Fewer target points than k + 1: every column holds them all, re-ranked.
+  const pcl_crf::KnnIndex two (random (dimension, 2));
+  const m::ShapeNeighbours all = m::searchShapeNeighbours (before, two, k);
+  EXPECT_TRUE (std::isinf (all.outside_distance (0)));
+  const Eigen::MatrixXd far = before + random (dimension, 300);
+  EXPECT_EQ (m::updateShapeNeighbours (all, far, two, k).indices.topRows (k), two.search (far, k).indices);
+  EXPECT_THROW (m::updateShapeNeighbours (earlier, random (dimension, 5), shapes, k), std::invalid_argument);
+  EXPECT_THROW (m::updateShapeNeighbours (earlier, before, shapes, k + 1), std::invalid_argument);
+  EXPECT_THROW (m::searchShapeNeighbours (before, shapes, 0), std::invalid_argument);
+}
+
 /** A wall at y = 8 and a 4 m x 1.8 m box (a car) at y = 3 that drives 3 m along x. */
 struct MovingBoxScene
 {

@@ -46,6 +46,10 @@ public:
   Eigen::Index
   size () const;
 
+  /** \brief The indexed points (d x N, as given to build ()). */
+  const Eigen::MatrixXd&
+  points () const;
+
   /** \brief The k nearest indexed points of every column of \a queries
    *  (rows must equal the indexed dimension). */
   Result

@@ -61,6 +61,8 @@ struct AssociationStage
   std::vector<int> first_matches;
   /** pass 1's estimate of the static motion T_target_source. */
   Rigid2d T_first = Rigid2d::Identity ();
+  /** pass 1's shape neighbours (the joint pass reuses them where provably exact). */
+  matching::ShapeNeighbours first_shape_neighbours;
   /** the joint pass: candidates (the association states) and their raw geometry. */
   matching::PassGeometry pass;
   matching::BoostedScores scores;

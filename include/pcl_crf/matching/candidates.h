@@ -3,6 +3,7 @@
 #include <pcl_crf/core/knn_index.h>
 #include <pcl_crf/core/scan_pair.h>
 #include <pcl_crf/matching/segment_motions.h>
+#include <pcl_crf/matching/shape_neighbours.h>
 
 #include <Eigen/Core>
 
@@ -87,14 +88,15 @@ struct TargetIndex
 
 /** \brief Builds the candidate sets with one batched kNN query per kind.
  *  \param[in] source_in_target source points moved into the target frame by the current motion [m]
- *  \param[in] source_embedding shapeEmbedding of the source (same motion)
+ *  \param[in] shape_neighbours the source's shape neighbours (same motion; the first
+ *             CandidateParameters::shape_neighbours of each column are used)
  *  \param[in] segment_translation per source point: its segment motion hypothesis [m]
  *  \param[in] has_segment_motion per source point: whether it has one (segmentMotionHypotheses)
  *  \param[in] target the target's indices (points: target points, shapes: their embedding)
  *  \param[in] parameters neighbour counts
  */
 Candidates
-findCandidates (const Eigen::Matrix2Xd& source_in_target, const Eigen::MatrixXd& source_embedding,
+findCandidates (const Eigen::Matrix2Xd& source_in_target, const ShapeNeighbours& shape_neighbours,
                 const Eigen::Matrix2Xd& segment_translation, const std::vector<bool>& has_segment_motion,
                 const TargetIndex& target, const CandidateParameters& parameters);
 

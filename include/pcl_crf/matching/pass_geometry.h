@@ -59,6 +59,9 @@ struct PassGeometry
   Eigen::Matrix2Xd source_current;
   /** per source point: its segment's motion hypothesis beyond T_current and supports. */
   SegmentMotions segment_motions;
+  /** the source's shape neighbours at T_current (CandidateParameters::shape_neighbours
+   *  of them are candidates; empty when that is 0). */
+  ShapeNeighbours shape_neighbours;
   /** candidate target points of every source point. */
   Candidates candidates;
 };
@@ -66,21 +69,25 @@ struct PassGeometry
 /** \brief Moves the source points by both motions, finds the segment motion
  *  hypotheses and the candidates (guess neighbours around T_current * s_i, shape
  *  neighbours, segment-hypothesis neighbours).
+ *  \param[in] earlier the shape neighbours of an earlier pass over the same source and
+ *             target, or nullptr: reused where provably exact (updateShapeNeighbours)
  */
 PassGeometry
 preparePass (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess, const Rigid2d& T_current,
-             const CandidateParameters& parameters);
+             const CandidateParameters& parameters, const ShapeNeighbours* earlier = nullptr);
 
-/** \brief preparePass without the candidates: both motions applied and the segment
- *  motion hypotheses found, so that a caller may change the hypotheses (the joint
- *  model gives the points of a moving cluster its motion) before passCandidates. */
+/** \brief preparePass without the candidates: both motions applied, the segment
+ *  motion hypotheses and the shape neighbours found, so that a caller may change the
+ *  hypotheses (the joint model gives the points of a moving cluster its motion)
+ *  before passCandidates. */
 PassGeometry
 preparePassMotions (const ScanShape& source, const PreparedTarget& target, const Rigid2d& T_guess,
-                    const Rigid2d& T_current, const CandidateParameters& parameters);
+                    const Rigid2d& T_current, const CandidateParameters& parameters,
+                    const ShapeNeighbours* earlier = nullptr);
 
 /** \brief The candidates of a pass from its motions and hypotheses (findCandidates). */
 Candidates
-passCandidates (const ScanShape& source, const PreparedTarget& target, const PassGeometry& pass,
+passCandidates (const PreparedTarget& target, const PassGeometry& pass,
                 const CandidateParameters& parameters);
 
 }  // namespace matching

@@ -57,10 +57,12 @@ struct PassResult
 /** \brief One pass: candidates under \a T_current, boosted features, Viterbi and
  *  forward–backward on the chain, then the robust motion estimate from the MAP
  *  inlier pairs, each weighted by its marginal inlier probability 1 − p(y_i = outlier).
+ *  \param[in] earlier the previous pass's shape neighbours (same source and target), or
+ *             nullptr; only saves searching (preparePass)
  */
 PassResult
 runPass (const ScanShape& source, const PreparedTarget& target, const MotionGuess& guess, const Rigid2d& T_current,
-         const StageModel& stage, const MatchingParameters& parameters);
+         const StageModel& stage, const MatchingParameters& parameters, const ShapeNeighbours* earlier = nullptr);
 
 /** \brief CRF-Matching of a source scan against a prepared target scan.
  *
