@@ -88,6 +88,9 @@ updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& emb
     ranked.clear ();
     for (Eigen::Index r = 0; r < k_plus_1; ++r) {
       const int j = before.indices (r, i);
+      if (j >= static_cast<int> (targets.cols ()))
+        fail ("updateShapeNeighbours", "the earlier neighbours index target point " + std::to_string (j) +
+                                           " of " + std::to_string (targets.cols ()) + ": another target's");
       if (j >= 0)
         ranked.emplace_back ((embedding.col (i) - targets.col (j)).squaredNorm (), j);
     }

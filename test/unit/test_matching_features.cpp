@@ -153,6 +153,7 @@ TEST (MatchingShapeNeighbours, ReusedNeighboursEqualAFreshSearch)
   EXPECT_THROW (m::updateShapeNeighbours (earlier, random (dimension, 5), shapes, k), std::invalid_argument);
   EXPECT_THROW (m::updateShapeNeighbours (earlier, before, shapes, k + 1), std::invalid_argument);
   EXPECT_THROW (m::searchShapeNeighbours (before, shapes, 0), std::invalid_argument);
+  EXPECT_THROW (m::updateShapeNeighbours (earlier, before, two, k), std::invalid_argument);  // another target
 }
 
 /** A wall at y = 8 and a 4 m x 1.8 m box (a car) at y = 3 that drives 3 m along x. */

@@ -51,7 +51,8 @@ searchShapeNeighbours (const Eigen::MatrixXd& embedding, const KnnIndex& shapes,
  *  \param[in] embedding shapeEmbedding of the source at the new placement
  *  \param[in] shapes the same target shape index as for \a before
  *  \param[in] k neighbours used (≤ before.used ())
- *  \throws std::invalid_argument when the sizes do not fit.
+ *  \throws std::invalid_argument when the sizes do not fit or \a before indexes points
+ *          \a shapes does not hold.
  */
 ShapeNeighbours
 updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& embedding, const KnnIndex& shapes,
