@@ -1,6 +1,8 @@
 #include <pcl_crf/matching/pass_geometry.h>
 #include <pcl_crf/matching/shape_features.h>
 
+#include <utility>
+
 namespace pcl_crf {
 namespace matching {
 
@@ -32,10 +34,10 @@ shapeNeighboursAt (const ScanShape& source, const PreparedTarget& target, const 
   const int k = parameters.shape_neighbours;
   if (k <= 0)
     return {};
-  const Eigen::MatrixXd embedding = shapeEmbedding (source.shape, source_current, parameters.shape_position_scale);
+  Eigen::MatrixXd embedding = shapeEmbedding (source.shape, source_current, parameters.shape_position_scale);
   if (earlier != nullptr && earlier->used () >= k && earlier->queries.cols () == embedding.cols ())
-    return updateShapeNeighbours (*earlier, embedding, target.index.shapes, k);
-  return searchShapeNeighbours (embedding, target.index.shapes, k);
+    return updateShapeNeighbours (*earlier, std::move (embedding), target.index.shapes, k);
+  return searchShapeNeighbours (std::move (embedding), target.index.shapes, k);
 }
 
 }  // namespace
@@ -56,8 +58,7 @@ preparePassMotions (const ScanShape& source, const PreparedTarget& target, const
 }
 
 Candidates
-passCandidates (const PreparedTarget& target, const PassGeometry& pass,
-                const CandidateParameters& parameters)
+passCandidates (const PreparedTarget& target, const PassGeometry& pass, const CandidateParameters& parameters)
 {
   return findCandidates (pass.source_current, pass.shape_neighbours, pass.segment_motions.translation,
                          pass.segment_motions.has_hypothesis, target.index, parameters);

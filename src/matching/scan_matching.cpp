@@ -84,7 +84,7 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
   for (int k = 0; k < passes; ++k) {
     const StageModel& stage = model.stages[std::min<std::size_t> (k, model.stages.size () - 1)];
     pass = runPass (source_scan, target, guess, result.T_target_source, stage, model.parameters,
-                    k > 0 ? &pass.geometry.shape_neighbours : nullptr);
+                    &pass.geometry.shape_neighbours);  // the last pass's, if any
     result.T_target_source = pass.T_estimate;
   }
   result.passes = passes;

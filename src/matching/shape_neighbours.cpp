@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_crf {
@@ -24,47 +25,56 @@ fail (const char* function, const std::string& what)
   throw std::invalid_argument (std::string ("[pcl_crf::matching::") + function + "] " + what);
 }
 
-/** Fills the columns \a columns of \a out from a fresh (k + 1)-nearest search of their queries. */
+/** The bound of every query of a fresh (k + 1)-nearest search: its (k + 1)-th distance,
+ *  or +inf when the index holds no more than k + 1 points (a column holds them all). */
+Eigen::VectorXd
+outsideDistances (const KnnIndex::Result& found, const KnnIndex& shapes)
+{
+  const Eigen::Index k_plus_1 = found.indices.rows ();
+  if (shapes.size () <= k_plus_1)
+    return Eigen::VectorXd::Constant (found.indices.cols (), kInfinity);
+  return found.squared_distances.row (k_plus_1 - 1).transpose ().cwiseSqrt ();
+}
+
+/** Searches the columns \a columns of \a out again (one batch of their queries). */
 void
 searchColumns (const std::vector<Eigen::Index>& columns, const KnnIndex& shapes, ShapeNeighbours& out)
 {
   if (columns.empty ())
     return;
-  const Eigen::Index k_plus_1 = out.indices.rows ();
   Eigen::MatrixXd queries (out.queries.rows (), static_cast<Eigen::Index> (columns.size ()));
   for (std::size_t q = 0; q < columns.size (); ++q)
     queries.col (q) = out.queries.col (columns[q]);
-  const KnnIndex::Result found = shapes.search (queries, static_cast<int> (k_plus_1));
-  const bool holds_every_point = shapes.size () <= k_plus_1;
+  const KnnIndex::Result found = shapes.search (queries, static_cast<int> (out.indices.rows ()));
+  const Eigen::VectorXd outside = outsideDistances (found, shapes);
   for (std::size_t q = 0; q < columns.size (); ++q) {
     out.indices.col (columns[q]) = found.indices.col (q);
-    out.outside_distance (columns[q]) =
-        holds_every_point ? kInfinity : std::sqrt (found.squared_distances (k_plus_1 - 1, q));
+    out.outside_distance (columns[q]) = outside (q);
   }
 }
 
 }  // namespace
 
 ShapeNeighbours
-searchShapeNeighbours (const Eigen::MatrixXd& embedding, const KnnIndex& shapes, int k)
+searchShapeNeighbours (Eigen::MatrixXd embedding, const KnnIndex& shapes, int k)
 {
   if (k < 1)
     fail ("searchShapeNeighbours", "k must be at least 1, got " + std::to_string (k));
   ShapeNeighbours neighbours;
-  neighbours.queries = embedding;
-  neighbours.indices.setConstant (k + 1, embedding.cols (), -1);
-  neighbours.outside_distance.setConstant (embedding.cols (), kInfinity);
-  std::vector<Eigen::Index> all (static_cast<std::size_t> (embedding.cols ()));
-  for (Eigen::Index i = 0; i < embedding.cols (); ++i)
-    all[static_cast<std::size_t> (i)] = i;
-  if (shapes.size () > 0)
-    searchColumns (all, shapes, neighbours);
+  neighbours.queries = std::move (embedding);
+  if (shapes.size () == 0) {  // nothing to find (and nothing to check the dimension against)
+    neighbours.indices.setConstant (k + 1, neighbours.queries.cols (), -1);
+    neighbours.outside_distance.setConstant (neighbours.queries.cols (), kInfinity);
+    return neighbours;
+  }
+  KnnIndex::Result found = shapes.search (neighbours.queries, k + 1);
+  neighbours.outside_distance = outsideDistances (found, shapes);
+  neighbours.indices = std::move (found.indices);
   return neighbours;
 }
 
 ShapeNeighbours
-updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& embedding, const KnnIndex& shapes,
-                       int k)
+updateShapeNeighbours (const ShapeNeighbours& before, Eigen::MatrixXd embedding, const KnnIndex& shapes, int k)
 {
   if (k < 1 || k > before.used ())
     fail ("updateShapeNeighbours", "k must be in [1, " + std::to_string (before.used ()) + "], got " +
@@ -77,13 +87,14 @@ updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& emb
   const Eigen::MatrixXd& targets = shapes.points ();
   const Eigen::Index k_plus_1 = before.indices.rows ();
   ShapeNeighbours after;
-  after.queries = embedding;
+  after.queries = std::move (embedding);
   after.indices = before.indices;
-  after.outside_distance.resize (embedding.cols ());
+  after.outside_distance.resize (after.queries.cols ());
   std::vector<Eigen::Index> unproven;
   std::vector<std::pair<double, int>> ranked;  // (new squared distance, target), old order kept on ties
-  for (Eigen::Index i = 0; i < embedding.cols (); ++i) {
-    const double moved = (embedding.col (i) - before.queries.col (i)).norm ();
+  for (Eigen::Index i = 0; i < after.queries.cols (); ++i) {
+    const auto query = after.queries.col (i);
+    const double moved = (query - before.queries.col (i)).norm ();
     const double bound = before.outside_distance (i) - moved;  // nothing outside the column is nearer
     ranked.clear ();
     for (Eigen::Index r = 0; r < k_plus_1; ++r) {
@@ -92,7 +103,7 @@ updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& emb
         fail ("updateShapeNeighbours", "the earlier neighbours index target point " + std::to_string (j) +
                                            " of " + std::to_string (targets.cols ()) + ": another target's");
       if (j >= 0)
-        ranked.emplace_back ((embedding.col (i) - targets.col (j)).squaredNorm (), j);
+        ranked.emplace_back ((query - targets.col (j)).squaredNorm (), j);
     }
     std::stable_sort (ranked.begin (), ranked.end (),
                       [] (const std::pair<double, int>& a, const std::pair<double, int>& b) { return a.first < b.first; });

@@ -87,8 +87,7 @@ preparePassMotions (const ScanShape& source, const PreparedTarget& target, const
 
 /** \brief The candidates of a pass from its motions and hypotheses (findCandidates). */
 Candidates
-passCandidates (const PreparedTarget& target, const PassGeometry& pass,
-                const CandidateParameters& parameters);
+passCandidates (const PreparedTarget& target, const PassGeometry& pass, const CandidateParameters& parameters);
 
 }  // namespace matching
 }  // namespace pcl_crf

@@ -34,12 +34,12 @@ struct ShapeNeighbours
 };
 
 /** \brief The k + 1 nearest target points of every column of \a embedding (one batched query).
- *  \param[in] embedding shapeEmbedding of the source points
+ *  \param[in] embedding shapeEmbedding of the source points (kept as ShapeNeighbours::queries)
  *  \param[in] shapes the target's shape index (TargetIndex::shapes)
  *  \param[in] k neighbours used (≥ 1)
  */
 ShapeNeighbours
-searchShapeNeighbours (const Eigen::MatrixXd& embedding, const KnnIndex& shapes, int k);
+searchShapeNeighbours (Eigen::MatrixXd embedding, const KnnIndex& shapes, int k);
 
 /** \brief The same k nearest neighbours as searchShapeNeighbours (embedding, shapes, k),
  *  taken from \a before where that is provably exact: a query moved by δ is nearer than
@@ -55,8 +55,7 @@ searchShapeNeighbours (const Eigen::MatrixXd& embedding, const KnnIndex& shapes,
  *          \a shapes does not hold.
  */
 ShapeNeighbours
-updateShapeNeighbours (const ShapeNeighbours& before, const Eigen::MatrixXd& embedding, const KnnIndex& shapes,
-                       int k);
+updateShapeNeighbours (const ShapeNeighbours& before, Eigen::MatrixXd embedding, const KnnIndex& shapes, int k);
 
 }  // namespace matching
 }  // namespace pcl_crf
