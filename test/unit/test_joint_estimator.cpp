@@ -4,8 +4,8 @@
 #include <pcl_crf/joint_crf_estimator.h>
 #include <pcl_crf/logs/log_pairs.h>
 #include <pcl_crf/logs/read_laser_log.h>
-#include <pcl_crf/metrics/motion_error.h>
 #include <pcl_crf/matching/scan_matching.h>
+#include <pcl_crf/metrics/motion_error.h>
 #include <pcl_crf/metrics/pair_scores.h>
 #include <pcl_crf/simulation/scan_pair_simulator.h>
 
