@@ -11,6 +11,10 @@
 #   SPLITS           space-separated NAME:SEED splits (default: "train:1001 test:2002",
 #                    the shipped ones); other seeds give fresh splits of the same
 #                    distribution (scripts/heldout_table.sh).
+#   BEAMS, FOV       beams per scan and field of view [deg] (default 361 and 180, the
+#                    shipped SICK-like scans; BEAMS=1081 FOV=270 gives Hokuyo-like
+#                    scans of the same kind of street, to test the 361-beam models
+#                    on a sensor they were not trained on).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -23,8 +27,14 @@ if [ ! -x "$simulate" ]; then
   exit 1
 fi
 
+beams=${BEAMS:-361}
+fov=${FOV:-180}
+for value in "$beams" "$fov"; do
+  [[ "$value" =~ ^[1-9][0-9]*$ ]] || { echo "generate_default.sh: BEAMS and FOV must be positive integers, got '$value'" >&2; exit 1; }
+done
+
 # Every setting spelled out, so a change of a default does not change the dataset.
-common=(--pairs 30 --beams 361 --fov 180 --range 30 --noise 0.01 --dropout 0.01
+common=(--pairs 30 --beams "$beams" --fov "$fov" --range 30 --noise 0.01 --dropout 0.01
         --speed 10 --yaw-rate 0 --scene mixed --moving -1 --object-speed -1
         --spacing travel --travel 2,4 --odom-noise 0.1,0.05,0.02 --legs 0.5
         --name-prefix pair_)

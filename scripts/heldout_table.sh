@@ -13,6 +13,9 @@
 #   METHODS       comma-separated methods                  (default: the joint paper's comparison)
 #   MODELS        folder of learned models                 (default: data/models)
 #   OUT           keep the splits and CSVs here            (default: a temporary folder)
+#   BEAMS, FOV    scan resolution of the fresh splits      (default: 361 beams over 180°,
+#                 as shipped; BEAMS=1081 FOV=270 for Hokuyo-like scans, see
+#                 data/generate_default.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

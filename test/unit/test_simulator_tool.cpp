@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -191,6 +192,31 @@ TEST (SimulatorTool, GeneratesFreshSplitsFromSeeds)
                   &output),
              1);
   EXPECT_NE (output.find ("split 'fresh' is not NAME:SEED"), std::string::npos) << output;
+  fs::remove_all (dir);
+}
+
+TEST (SimulatorTool, GeneratesHokuyoLikeSplits)
+{
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path script = fs::path (PCL_CRF_SOURCE_DIR) / "data" / "generate_default.sh";
+  const fs::path dir = freshTempDir ("sim_hokuyo_split");
+  std::string output;
+  ASSERT_EQ (run ("SPLITS='fine:7' BEAMS=1081 FOV=270 bash " + quote (script.string ()) + " " + quote (program) + " " +
+                      quote (dir.string ()),
+                  &output),
+             0)
+      << output;
+  const auto fine = pcl_crf::loadDataset ((dir / "fine").string ());
+  ASSERT_EQ (fine.size (), 30u);
+  EXPECT_EQ (fine[0].sensor.beam_count, 1081);
+  EXPECT_NEAR (fine[0].sensor.angle_increment, 270.0 / 1080.0 * M_PI / 180.0, 1e-12);  // 0.25°
+  EXPECT_GT (fine[0].source.cols (), 361);
+
+  EXPECT_EQ (run ("SPLITS='fine:7' BEAMS=many bash " + quote (script.string ()) + " " + quote (program) + " " +
+                      quote (dir.string ()),
+                  &output),
+             1);
+  EXPECT_NE (output.find ("BEAMS and FOV must be positive integers, got 'many'"), std::string::npos) << output;
   fs::remove_all (dir);
 }
 
