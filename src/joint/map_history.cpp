@@ -6,9 +6,11 @@ namespace joint {
 bool
 MapHistory::repeats (const std::vector<int>& association, const std::vector<int>& cluster)
 {
-  bool same = association_[1].size () == association.size () && cluster_[1].size () == cluster.size () &&
-              association.size () == cluster.size ();
-  for (std::size_t i = 0; same && i < association.size (); ++i)
+  const std::size_t n = association.size ();
+  bool same = cluster.size () == n;
+  for (int r = 0; r < 2; ++r)  // both earlier records hold one state per node
+    same = same && association_[r].size () == n && cluster_[r].size () == n;
+  for (std::size_t i = 0; same && i < n; ++i)
     same = (association[i] == association_[0][i] && cluster[i] == cluster_[0][i]) ||
            (association[i] == association_[1][i] && cluster[i] == cluster_[1][i]);
   association_[1].swap (association_[0]);
