@@ -448,14 +448,43 @@ backwardMessages (const ChainPotentials& chain)
   return beta;
 }
 
+namespace {
+
+/** The MAP result of the last compute () of \a workspace. */
 MapResult
-maxProduct (const ChainPotentials& chain, ChainInference& workspace)
+mapResultOf (const ChainInference& workspace)
 {
-  workspace.compute (chain, kMapLabels);
   MapResult result;
   result.labels = workspace.mapLabels ();
   result.log_score = workspace.mapLogScore ();
   return result;
+}
+
+/** The marginals of the last compute () of \a workspace (the edge marginals when it computed them). */
+MarginalResult
+marginalResultOf (const ChainInference& workspace, bool with_edge_marginals)
+{
+  MarginalResult result;
+  const std::size_t n = workspace.size ();
+  result.log_partition = workspace.logPartition ();
+  result.node_marginals.reserve (n);
+  for (std::size_t i = 0; i < n; ++i)
+    result.node_marginals.emplace_back (workspace.nodeMarginal (i));
+  if (!with_edge_marginals || n == 0)
+    return result;
+  result.edge_marginals.reserve (n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    result.edge_marginals.emplace_back (workspace.edgeMarginal (i));
+  return result;
+}
+
+}  // namespace
+
+MapResult
+maxProduct (const ChainPotentials& chain, ChainInference& workspace)
+{
+  workspace.compute (chain, kMapLabels);
+  return mapResultOf (workspace);
 }
 
 MapResult
@@ -469,18 +498,15 @@ MarginalResult
 sumProduct (const ChainPotentials& chain, ChainInference& workspace, bool with_edge_marginals)
 {
   workspace.compute (chain, with_edge_marginals ? kEdgeMarginals : kNodeMarginals);
-  MarginalResult result;
-  const std::size_t n = workspace.size ();
-  result.log_partition = workspace.logPartition ();
-  result.node_marginals.reserve (n);
-  for (std::size_t i = 0; i < n; ++i)
-    result.node_marginals.emplace_back (workspace.nodeMarginal (i));
-  if (!with_edge_marginals || n == 0)
-    return result;
-  result.edge_marginals.reserve (n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    result.edge_marginals.emplace_back (workspace.edgeMarginal (i));
-  return result;
+  return marginalResultOf (workspace, with_edge_marginals);
+}
+
+void
+maxAndSumProduct (const ChainPotentials& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals)
+{
+  workspace.compute (chain, kMapAndMarginals);
+  map = mapResultOf (workspace);
+  marginals = marginalResultOf (workspace, false);
 }
 
 MarginalResult

@@ -59,8 +59,8 @@ runPass (const ScanShape& source, const PreparedTarget& target, const MotionGues
   pass.scores = scorePass (stage, source, target.scan, pass.geometry);
   const crf::ChainPotentials chain = matchingChainPotentials (source, target.scan, pass.geometry, pass.scores,
                                                               stage.crf_weights, parameters.residual_scale);
-  pass.map = crf::maxProduct (chain);       // MAP association (Viterbi)
-  pass.marginals = crf::sumProduct (chain); // node marginals (forward–backward)
+  crf::ChainInference inference;
+  crf::maxAndSumProduct (chain, inference, pass.map, pass.marginals);  // Viterbi and forward–backward
   pass.matches = labelsToMatches (pass.geometry.candidates, pass.map.labels);
   pass.T_estimate = robustRigidFit (source.points, target.scan.points, target.normals, pass.geometry.candidates,
                                     pass.matches, inlierProbabilities (pass.marginals), T_current, guess, parameters.fit);

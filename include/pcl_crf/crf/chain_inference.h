@@ -200,6 +200,18 @@ sumProduct (const ChainPotentials& chain, bool with_edge_marginals = false);
 MarginalResult
 sumProduct (const ChainPotentials& chain, ChainInference& workspace, bool with_edge_marginals = false);
 
+/** \brief maxProduct () and sumProduct () (node marginals) of one chain in one pass
+ *  over its potentials: the chain is validated and packed once, and the results are
+ *  those of the two calls.
+ *  \param[in] chain the potentials
+ *  \param[in,out] workspace the buffers (see ChainInference)
+ *  \param[out] map the MAP labelling and its log-score
+ *  \param[out] marginals log Z and the node marginals (no edge marginals)
+ *  \throws std::invalid_argument when the chain is invalid or every labelling is forbidden.
+ */
+void
+maxAndSumProduct (const ChainPotentials& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals);
+
 /** \brief Forward log-messages α_i(s) = log Σ_{y_0..y_{i−1}} exp(score of y_0..y_{i−1}, s),
  *  including unary_i(s) (Rabiner's α in log space). The chain is not validated.
  */
