@@ -12,8 +12,6 @@ namespace joint {
 
 namespace {
 
-using Vector = Eigen::VectorXd;
-
 /** The most states a node may have (association candidates + 1, clusters + 1): node
  *  temporaries live on the stack, so a visit allocates nothing. */
 constexpr int kMaxStates = 64;
@@ -64,15 +62,86 @@ argmax (const Small& v)
   return best;
 }
 
-/** Every message of the ladder; index i of a chain message is the edge (i, i + 1). */
-struct Messages
+/** Every message of the ladder in one buffer (allocated once per inference, not once
+ *  per message); index i of a chain message is the edge (i, i + 1). Node i's block
+ *  holds the three messages of its S_i association states, then the three of its
+ *  K + 1 cluster states. */
+class Messages
 {
-  std::vector<Vector> association_forward;   // x^a_i → x^a_{i+1}
-  std::vector<Vector> association_backward;  // x^a_{i+1} → x^a_i
-  std::vector<Vector> cluster_forward;       // x^c_i → x^c_{i+1}
-  std::vector<Vector> cluster_backward;      // x^c_{i+1} → x^c_i
-  std::vector<Vector> association_to_cluster;
-  std::vector<Vector> cluster_to_association;
+public:
+  using Message = Eigen::Map<Eigen::VectorXd>;
+  using ConstMessage = Eigen::Map<const Eigen::VectorXd>;
+
+  /** All messages 0. */
+  Messages (const LadderGeometry& geometry, int clusters)
+    : clusters_ (clusters), offsets_ (static_cast<std::size_t> (geometry.size ()) + 1, 0)
+  {
+    for (int i = 0; i < geometry.size (); ++i) {
+      association_states_.push_back (geometry.associationStates (i));
+      offsets_[i + 1] = offsets_[i] + 3 * static_cast<std::size_t> (association_states_[i] + clusters_ + 1);
+    }
+    values_.assign (offsets_.back (), 0.0);
+  }
+
+  /** x^a_i → x^a_{i+1} */
+  Message
+  associationForward (int i) { return association (i + 1, 0); }
+  ConstMessage
+  associationForward (int i) const { return association (i + 1, 0); }
+  /** x^a_{i+1} → x^a_i */
+  Message
+  associationBackward (int i) { return association (i, 1); }
+  ConstMessage
+  associationBackward (int i) const { return association (i, 1); }
+  /** x^c_i → x^a_i (the rung) */
+  Message
+  clusterToAssociation (int i) { return association (i, 2); }
+  ConstMessage
+  clusterToAssociation (int i) const { return association (i, 2); }
+  /** x^c_i → x^c_{i+1} */
+  Message
+  clusterForward (int i) { return cluster (i, 0); }
+  ConstMessage
+  clusterForward (int i) const { return cluster (i, 0); }
+  /** x^c_{i+1} → x^c_i */
+  Message
+  clusterBackward (int i) { return cluster (i, 1); }
+  ConstMessage
+  clusterBackward (int i) const { return cluster (i, 1); }
+  /** x^a_i → x^c_i (the rung) */
+  Message
+  associationToCluster (int i) { return cluster (i, 2); }
+  ConstMessage
+  associationToCluster (int i) const { return cluster (i, 2); }
+
+private:
+  /** Where the \a slot-th message over node i's association states begins. */
+  std::size_t
+  associationAt (int i, int slot) const
+  {
+    return offsets_[i] + static_cast<std::size_t> (slot) * association_states_[i];
+  }
+
+  /** Where the \a slot-th message over node i's cluster states begins. */
+  std::size_t
+  clusterAt (int i, int slot) const
+  {
+    return associationAt (i, 3) + static_cast<std::size_t> (slot) * (clusters_ + 1);
+  }
+
+  Message
+  association (int i, int slot) { return {values_.data () + associationAt (i, slot), association_states_[i]}; }
+  ConstMessage
+  association (int i, int slot) const { return {values_.data () + associationAt (i, slot), association_states_[i]}; }
+  Message
+  cluster (int i, int slot) { return {values_.data () + clusterAt (i, slot), clusters_ + 1}; }
+  ConstMessage
+  cluster (int i, int slot) const { return {values_.data () + clusterAt (i, slot), clusters_ + 1}; }
+
+  int clusters_;
+  std::vector<int> association_states_;
+  std::vector<std::size_t> offsets_;  // node i's block begins at offsets_[i]
+  std::vector<double> values_;
 };
 
 class Ladder
@@ -81,9 +150,8 @@ public:
   Ladder (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,
           const std::vector<Rigid2d>& motions, const LadderOptions& options)
     : g_ (geometry), association_ (association), w_ (weights), options_ (options), motions_ (motions),
-      n_ (geometry.size ()), clusters_ (static_cast<int> (motions.size ()))
+      n_ (geometry.size ()), clusters_ (static_cast<int> (motions.size ())), messages_ (geometry, clusters_)
   {
-    messages_ = zeroMessages ();
   }
 
   LadderResult
@@ -111,8 +179,8 @@ public:
     result.motions = motions_;
     result.cluster_beliefs.resize (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
-      const Vector b = clusterIncoming (messages_, i) + messages_.association_to_cluster[i];  // once per run
-      const Vector p = (b.array () - b.maxCoeff ()).exp ().matrix ();
+      const Small b = clusterIncoming (messages_, i) + messages_.associationToCluster (i);  // once per run
+      const Small p = (b.array () - b.maxCoeff ()).exp ().matrix ();
       result.cluster_beliefs.col (i) = p / p.sum ();
     }
     result.cluster_evidence = localEvidence ();
@@ -126,8 +194,8 @@ private:
     computeMotionPotentials ();  // under the final refit
     Eigen::MatrixXd evidence (clusters_ + 1, n_);
     for (int i = 0; i < n_; ++i) {
-      const Vector r = evidenceOf (i);
-      const Vector p = (r.array () - r.maxCoeff ()).exp ().matrix ();
+      const Small r = evidenceOf (i);
+      const Small p = (r.array () - r.maxCoeff ()).exp ().matrix ();
       evidence.col (i) = p / p.sum ();
     }
     return evidence;
@@ -143,32 +211,15 @@ private:
     return (rung.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
   }
 
-  Messages
-  zeroMessages () const
-  {
-    Messages m;
-    for (int i = 0; i + 1 < n_; ++i) {
-      m.association_forward.push_back (Vector::Zero (g_.associationStates (i + 1)));
-      m.association_backward.push_back (Vector::Zero (g_.associationStates (i)));
-      m.cluster_forward.push_back (Vector::Zero (clusters_ + 1));
-      m.cluster_backward.push_back (Vector::Zero (clusters_ + 1));
-    }
-    for (int i = 0; i < n_; ++i) {
-      m.association_to_cluster.push_back (Vector::Zero (clusters_ + 1));
-      m.cluster_to_association.push_back (Vector::Zero (g_.associationStates (i)));
-    }
-    return m;
-  }
-
   /** Unary plus chain messages into x^a_i (without the rung), optionally leaving one side out. */
   Small
   associationIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
   {
     Small in = association_.unary[i];
     if (with_left && i > 0)
-      in += m.association_forward[i - 1];
+      in += m.associationForward (i - 1);
     if (with_right && i + 1 < n_)
-      in += m.association_backward[i];
+      in += m.associationBackward (i);
     return in;
   }
 
@@ -177,20 +228,19 @@ private:
   {
     Small in = Small::Zero (clusters_ + 1);
     if (with_left && i > 0)
-      in += m.cluster_forward[i - 1];
+      in += m.clusterForward (i - 1);
     if (with_right && i + 1 < n_)
-      in += m.cluster_backward[i];
+      in += m.clusterBackward (i);
     return in;
   }
 
-  /** T_l s_i for every cluster l (2 x K). */
-  Eigen::Matrix2Xd
-  moved (int i) const
+  /** T_l s_i for every cluster l into \a m (2 x K, its storage reused). */
+  void
+  moved (int i, Eigen::Matrix2Xd& m) const
   {
-    Eigen::Matrix2Xd m (2, clusters_);
+    m.resize (2, clusters_);
     for (int l = 0; l < clusters_; ++l)
       m.col (l) = motions_[l] * g_.source.col (i);
-    return m;
   }
 
   /** The rung and clustering-edge potentials under the current motions (they depend
@@ -212,9 +262,10 @@ private:
       for (int l : changed)
         updateRungColumn (g_, motions_[l], w_, l, rungs_);
     edges_.resize (static_cast<std::size_t> (std::max (n_ - 1, 0)));
-    Eigen::Matrix2Xd here = moved (0), next;
+    Eigen::Matrix2Xd here, next;
+    moved (0, here);
     for (int i = 0; i + 1 < n_; ++i) {
-      next = moved (i + 1);
+      moved (i + 1, next);
       clusterEdgePotential (g_, i, here, next, w_, edges_[i]);
       here.swap (next);
     }
@@ -223,7 +274,7 @@ private:
 
   /** m ← (1 − λ) fresh + λ m (log domain). */
   void
-  assign (Vector& message, const Small& fresh)
+  assign (Messages::Message message, const Small& fresh)
   {
     const double keep = options_.damping;
     double change = change_;  // a local: message (k) could alias change_, which would serialise the loop
@@ -250,22 +301,22 @@ private:
     const Eigen::MatrixXd& rung = rungs_[i];
     Small fresh;
     maxToColumns (a_in, rung, fresh);
-    assign (out.association_to_cluster[i], fresh);
+    assign (out.associationToCluster (i), fresh);
     maxToRows (c_in, rung, fresh);
-    assign (out.cluster_to_association[i], fresh);
+    assign (out.clusterToAssociation (i), fresh);
     if (to_right && i + 1 < n_) {
-      maxToColumns (a_in - Small (in.association_backward[i]) + in.cluster_to_association[i],
+      maxToColumns (a_in - Small (in.associationBackward (i)) + in.clusterToAssociation (i),
                     association_.pairwise[i], fresh);
-      assign (out.association_forward[i], fresh);
-      maxToColumns (c_in - Small (in.cluster_backward[i]) + in.association_to_cluster[i], edges_[i], fresh);
-      assign (out.cluster_forward[i], fresh);
+      assign (out.associationForward (i), fresh);
+      maxToColumns (c_in - Small (in.clusterBackward (i)) + in.associationToCluster (i), edges_[i], fresh);
+      assign (out.clusterForward (i), fresh);
     }
     if (to_left && i > 0) {
-      maxToRows (a_in - Small (in.association_forward[i - 1]) + in.cluster_to_association[i],
+      maxToRows (a_in - Small (in.associationForward (i - 1)) + in.clusterToAssociation (i),
                  association_.pairwise[i - 1], fresh);
-      assign (out.association_backward[i - 1], fresh);
-      maxToRows (c_in - Small (in.cluster_forward[i - 1]) + in.association_to_cluster[i], edges_[i - 1], fresh);
-      assign (out.cluster_backward[i - 1], fresh);
+      assign (out.associationBackward (i - 1), fresh);
+      maxToRows (c_in - Small (in.clusterForward (i - 1)) + in.associationToCluster (i), edges_[i - 1], fresh);
+      assign (out.clusterBackward (i - 1), fresh);
     }
   }
 
@@ -285,7 +336,7 @@ private:
   {
     const Small a_in = associationIncoming (messages_, i), c_in = clusterIncoming (messages_, i);
     visit (i, messages_, messages_, to_right, !to_right, a_in, c_in);
-    updateMap (i, a_in + messages_.cluster_to_association[i], c_in + messages_.association_to_cluster[i]);
+    updateMap (i, a_in + messages_.clusterToAssociation (i), c_in + messages_.associationToCluster (i));
   }
 
   void
@@ -335,8 +386,8 @@ private:
   void
   updateMap (int i)
   {
-    updateMap (i, associationIncoming (messages_, i) + messages_.cluster_to_association[i],
-               clusterIncoming (messages_, i) + messages_.association_to_cluster[i]);
+    updateMap (i, associationIncoming (messages_, i) + messages_.clusterToAssociation (i),
+               clusterIncoming (messages_, i) + messages_.associationToCluster (i));
   }
 
   /** updateMap () from node i's association and cluster beliefs. */
