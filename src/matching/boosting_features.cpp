@@ -1,11 +1,20 @@
 #include <pcl_crf/matching/boosting_features.h>
 #include <pcl_crf/matching/raw_features.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace pcl_crf {
 namespace matching {
+
+namespace {
+
+/** Columns scored together, stump after stump: their features (a few KB) stay in the
+ *  L1 cache for all the stumps instead of being read again from memory per stump. */
+constexpr Eigen::Index kColumnBlock = 64;
+
+}  // namespace
 
 Eigen::VectorXd
 boostedMargins (const crf::AdaBoostStumps& classifier, const Eigen::MatrixXd& features)
@@ -15,13 +24,16 @@ boostedMargins (const crf::AdaBoostStumps& classifier, const Eigen::MatrixXd& fe
                                  std::to_string (classifier.getDimension ()) + " features, got " +
                                  std::to_string (features.rows ()));
   Eigen::VectorXd margins = Eigen::VectorXd::Zero (features.cols ());
-  for (const crf::AdaBoostStumps::Stump& stump : classifier.getStumps ()) {
-    const double vote = stump.alpha * stump.polarity;
-    if (stump.feature < 0)
-      margins.array () += vote;
-    else  // h(x) = polarity if x[feature] > threshold else −polarity
-      for (Eigen::Index c = 0; c < features.cols (); ++c)
-        margins (c) += features (stump.feature, c) > stump.threshold ? vote : -vote;
+  for (Eigen::Index begin = 0; begin < features.cols (); begin += kColumnBlock) {
+    const Eigen::Index end = std::min (begin + kColumnBlock, features.cols ());
+    for (const crf::AdaBoostStumps::Stump& stump : classifier.getStumps ()) {  // each margin sums them in order
+      const double vote = stump.alpha * stump.polarity;
+      if (stump.feature < 0)
+        margins.segment (begin, end - begin).array () += vote;
+      else  // h(x) = polarity if x[feature] > threshold else −polarity
+        for (Eigen::Index c = begin; c < end; ++c)
+          margins (c) += features (stump.feature, c) > stump.threshold ? vote : -vote;
+    }
   }
   return margins;
 }
