@@ -36,11 +36,12 @@ double
 estimateAngularResolution (const Eigen::Matrix2Xd& scan)
 {
   std::vector<double> steps;
+  double previous = scan.cols () > 0 ? std::atan2 (scan (1, 0), scan (0, 0)) : 0.0;  // each bearing once
   for (Eigen::Index i = 1; i < scan.cols (); ++i)
   {
-    const double step = std::abs (std::remainder (std::atan2 (scan (1, i), scan (0, i)) -
-                                                      std::atan2 (scan (1, i - 1), scan (0, i - 1)),
-                                                  2.0 * M_PI));
+    const double bearing = std::atan2 (scan (1, i), scan (0, i));
+    const double step = std::abs (std::remainder (bearing - previous, 2.0 * M_PI));
+    previous = bearing;
     if (step > 0.0)
       steps.push_back (step);
   }
