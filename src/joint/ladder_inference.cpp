@@ -211,27 +211,36 @@ private:
     return (rung.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
   }
 
-  /** Unary plus chain messages into x^a_i (without the rung), optionally leaving one side out. */
+  /** Unary plus chain messages into x^a_i (without the rung): (unary + left) + right.
+   *  Each case is a single expression, so the sum is written once (adding to a stored
+   *  copy made every visit wait for the copy's stores). */
   Small
-  associationIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
+  associationIncoming (const Messages& m, int i) const
   {
-    Small in = association_.unary[i];
-    if (with_left && i > 0)
-      in += m.associationForward (i - 1);
-    if (with_right && i + 1 < n_)
-      in += m.associationBackward (i);
-    return in;
+    const Eigen::VectorXd& unary = association_.unary[i];
+    const bool left = i > 0, right = i + 1 < n_;
+    if (left && right)
+      return unary + m.associationForward (i - 1) + m.associationBackward (i);
+    if (left)
+      return unary + m.associationForward (i - 1);
+    if (right)
+      return unary + m.associationBackward (i);
+    return unary;
   }
 
+  /** The chain messages into x^c_i (without the rung): (0 + left) + right, as associationIncoming (). */
   Small
-  clusterIncoming (const Messages& m, int i, bool with_left = true, bool with_right = true) const
+  clusterIncoming (const Messages& m, int i) const
   {
-    Small in = Small::Zero (clusters_ + 1);
-    if (with_left && i > 0)
-      in += m.clusterForward (i - 1);
-    if (with_right && i + 1 < n_)
-      in += m.clusterBackward (i);
-    return in;
+    const auto zero = Small::Zero (clusters_ + 1);
+    const bool left = i > 0, right = i + 1 < n_;
+    if (left && right)
+      return zero + m.clusterForward (i - 1) + m.clusterBackward (i);
+    if (left)
+      return zero + m.clusterForward (i - 1);
+    if (right)
+      return zero + m.clusterBackward (i);
+    return zero;
   }
 
   /** T_l s_i for every cluster l into \a m (2 x K, its storage reused). */
@@ -305,17 +314,17 @@ private:
     maxToRows (c_in, rung, fresh);
     assign (out.clusterToAssociation (i), fresh);
     if (to_right && i + 1 < n_) {
-      maxToColumns (a_in - Small (in.associationBackward (i)) + in.clusterToAssociation (i),
+      maxToColumns (a_in - in.associationBackward (i) + in.clusterToAssociation (i),
                     association_.pairwise[i], fresh);
       assign (out.associationForward (i), fresh);
-      maxToColumns (c_in - Small (in.clusterBackward (i)) + in.associationToCluster (i), edges_[i], fresh);
+      maxToColumns (c_in - in.clusterBackward (i) + in.associationToCluster (i), edges_[i], fresh);
       assign (out.clusterForward (i), fresh);
     }
     if (to_left && i > 0) {
-      maxToRows (a_in - Small (in.associationForward (i - 1)) + in.clusterToAssociation (i),
+      maxToRows (a_in - in.associationForward (i - 1) + in.clusterToAssociation (i),
                  association_.pairwise[i - 1], fresh);
       assign (out.associationBackward (i - 1), fresh);
-      maxToRows (c_in - Small (in.clusterForward (i - 1)) + in.associationToCluster (i), edges_[i - 1], fresh);
+      maxToRows (c_in - in.clusterForward (i - 1) + in.associationToCluster (i), edges_[i - 1], fresh);
       assign (out.clusterBackward (i - 1), fresh);
     }
   }
