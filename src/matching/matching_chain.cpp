@@ -124,9 +124,66 @@ matchingChainFeatures (const ScanShape& source, const ScanShape& target, const P
   return features;
 }
 
-crf::ChainPotentials
-matchingChainPotentials (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
-                         const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale)
+namespace {
+
+/** Gives \a chain one node per source point with its candidates + 1 states. */
+void
+shapeChain (const Candidates& candidates, crf::ChainPotentials& chain)
+{
+  const int n = candidates.size ();
+  chain.unary.resize (n);
+  chain.pairwise.resize (n > 0 ? n - 1 : 0);
+  for (int i = 0; i < n; ++i) {
+    chain.unary[i].resize (candidates.count (i) + 1);
+    if (i + 1 < n)
+      chain.pairwise[i].resize (candidates.count (i) + 1, candidates.count (i + 1) + 1);
+  }
+}
+
+void
+shapeChain (const Candidates& candidates, crf::PackedChainPotentials& chain)
+{
+  const int n = candidates.size ();
+  std::size_t unary_entries = 0, pairwise_entries = 0;
+  for (int i = 0; i < n; ++i) {
+    unary_entries += static_cast<std::size_t> (candidates.count (i) + 1);
+    if (i + 1 < n)
+      pairwise_entries += static_cast<std::size_t> (candidates.count (i) + 1) * (candidates.count (i + 1) + 1);
+  }
+  chain.clear ();
+  chain.reserve (static_cast<std::size_t> (n), unary_entries, pairwise_entries);
+  for (int i = 0; i < n; ++i)
+    chain.addNode (candidates.count (i) + 1);
+}
+
+Eigen::VectorXd&
+unaryOf (crf::ChainPotentials& chain, int i)
+{
+  return chain.unary[i];
+}
+
+Eigen::Map<Eigen::VectorXd>
+unaryOf (crf::PackedChainPotentials& chain, int i)
+{
+  return chain.unary (i);
+}
+
+Eigen::MatrixXd&
+pairwiseOf (crf::ChainPotentials& chain, int i)
+{
+  return chain.pairwise[i];
+}
+
+Eigen::Map<Eigen::MatrixXd>
+pairwiseOf (crf::PackedChainPotentials& chain, int i)
+{
+  return chain.pairwise (i);
+}
+
+/** matchingChainPotentials () into either kind of chain. */
+template <typename Chain> void
+fillMatchingChain (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
+                   const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale, Chain& chain)
 {
   if (weights.size () != kCrfWeightCount)
     throw std::invalid_argument ("[pcl_crf::matching::matchingChainPotentials] expected " +
@@ -134,25 +191,21 @@ matchingChainPotentials (const ScanShape& source, const ScanShape& target, const
                                  std::to_string (weights.size ()));
   const Candidates& candidates = pass.candidates;
   const int n = candidates.size ();
-  crf::ChainPotentials chain;
-  chain.unary.resize (n);
+  shapeChain (candidates, chain);
   for (int i = 0; i < n; ++i) {  // unary_i(s) = w_u · f_u(i, s)
     const int count = candidates.count (i);
-    Eigen::VectorXd& u = chain.unary[i];
-    u.resize (count + 1);
+    auto&& u = unaryOf (chain, i);
     u.head (count) = weights (kDataMargin) * scores.data_margins.segment (candidates.offsets[i], count);
     u (count) = weights (kOutlierMargin) * scores.outlier_margins (i) + weights (kOutlierBias);
   }
   const double* w_p = weights.data () + kUnaryFeatureCount;
   const double squared_scale = residual_scale * residual_scale;
-  chain.pairwise.resize (n > 0 ? n - 1 : 0);
   for (int i = 0; i + 1 < n; ++i) {  // pairwise_i(s, t) = w_p · f_p(i, s, t)
     const SourceStep step = sourceStep (source, pass, i);
     const int count = candidates.count (i), count_next = candidates.count (i + 1);
     const int* j = candidates.targets.data () + candidates.offsets[i];
     const int* j_next = candidates.targets.data () + candidates.offsets[i + 1];
-    Eigen::MatrixXd& p = chain.pairwise[i];
-    p.resize (count + 1, count_next + 1);
+    auto&& p = pairwiseOf (chain, i);
     for (int t = 0; t < count_next; ++t) {
       for (int s = 0; s < count; ++s)
         p (s, t) = inlierPairPotential (j[s], j_next[t], step, target.points, squared_scale, w_p);
@@ -161,7 +214,25 @@ matchingChainPotentials (const ScanShape& source, const ScanShape& target, const
     p.col (count_next).head (count).setConstant (w_p[kOutlierSwitch]);  // candidate → outlier
     p (count, count_next) = w_p[kOutlierRun];
   }
+}
+
+}  // namespace
+
+crf::ChainPotentials
+matchingChainPotentials (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
+                         const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale)
+{
+  crf::ChainPotentials chain;
+  fillMatchingChain (source, target, pass, scores, weights, residual_scale, chain);
   return chain;
+}
+
+void
+matchingChainPotentials (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
+                         const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale,
+                         crf::PackedChainPotentials& chain)
+{
+  fillMatchingChain (source, target, pass, scores, weights, residual_scale, chain);
 }
 
 }  // namespace matching

@@ -57,8 +57,9 @@ runPass (const ScanShape& source, const PreparedTarget& target, const MotionGues
   PassResult pass;
   pass.geometry = preparePass (source, target, guess.T_target_source, T_current, parameters.candidates, earlier);
   pass.scores = scorePass (stage, source, target.scan, pass.geometry);
-  const crf::ChainPotentials chain = matchingChainPotentials (source, target.scan, pass.geometry, pass.scores,
-                                                              stage.crf_weights, parameters.residual_scale);
+  crf::PackedChainPotentials chain;
+  matchingChainPotentials (source, target.scan, pass.geometry, pass.scores, stage.crf_weights,
+                           parameters.residual_scale, chain);
   crf::ChainInference inference;
   crf::maxAndSumProduct (chain, inference, pass.map, pass.marginals);  // Viterbi and forward–backward
   pass.matches = labelsToMatches (pass.geometry.candidates, pass.map.labels);

@@ -212,6 +212,11 @@ sumProduct (const ChainPotentials& chain, ChainInference& workspace, bool with_e
 void
 maxAndSumProduct (const ChainPotentials& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals);
 
+/** \brief As above for a packed chain (used as it is, without a copy). */
+void
+maxAndSumProduct (const PackedChainPotentials& chain, ChainInference& workspace, MapResult& map,
+                  MarginalResult& marginals);
+
 /** \brief Forward log-messages α_i(s) = log Σ_{y_0..y_{i−1}} exp(score of y_0..y_{i−1}, s),
  *  including unary_i(s) (Rabiner's α in log space). The chain is not validated.
  */

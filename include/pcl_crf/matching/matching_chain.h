@@ -67,5 +67,16 @@ crf::ChainPotentials
 matchingChainPotentials (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
                          const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale);
 
+/** \brief matchingChainPotentials () into a packed chain: the potentials in one buffer
+ *  (\a chain keeps its capacity from call to call) and ready for crf::ChainInference
+ *  without a copy.
+ *  \param[out] chain the potentials (its previous content is replaced)
+ *  \throws std::invalid_argument when weights.size () != kCrfWeightCount.
+ */
+void
+matchingChainPotentials (const ScanShape& source, const ScanShape& target, const PassGeometry& pass,
+                         const BoostedScores& scores, const Eigen::VectorXd& weights, double residual_scale,
+                         crf::PackedChainPotentials& chain);
+
 }  // namespace matching
 }  // namespace pcl_crf
