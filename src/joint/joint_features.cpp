@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 namespace pcl_crf {
 namespace joint {
@@ -73,8 +74,23 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
 }
 
 void
+RungPotentials::resize (const LadderGeometry& geometry, int clusters)
+{
+  columns_ = clusters + 1;
+  rows_.resize (static_cast<std::size_t> (geometry.size ()));
+  offsets_.resize (rows_.size ());
+  std::size_t total = 0;
+  for (int i = 0; i < geometry.size (); ++i) {
+    rows_[i] = geometry.associationStates (i);
+    offsets_[i] = total;
+    total += static_cast<std::size_t> (rows_[i]) * static_cast<std::size_t> (columns_);
+  }
+  values_.resize (total);
+}
+
+void
 updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& w, int l,
-                  std::vector<Eigen::MatrixXd>& rungs)
+                  RungPotentials& rungs)
 {
   const double w_spacing = w (kRungSpacingResidual), w_beam = w (kRungBeamResidual);
   for (int i = 0; i < geometry.size (); ++i) {  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b)
@@ -90,14 +106,13 @@ updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const E
 
 void
 rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& w,
-                std::vector<Eigen::MatrixXd>& rungs)
+                RungPotentials& rungs)
 {
   const int clusters = static_cast<int> (motions.size ());
-  rungs.resize (static_cast<std::size_t> (geometry.size ()));
+  rungs.resize (geometry, clusters);
   for (int i = 0; i < geometry.size (); ++i) {  // the cluster-inlier features
     const int count = geometry.candidates.count (i);
-    Eigen::MatrixXd& rung = rungs[i];
-    rung.resize (count + 1, clusters + 1);
+    auto rung = rungs[i];
     rung.row (count).setConstant (w (kRungUnmatchedCluster));
     rung.col (clusters).head (count).setConstant (w (kRungMatchedOutlierCluster));
     rung (count, clusters) = 0.0;  // the reference
@@ -127,12 +142,14 @@ rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::ve
 
 void
 clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& moved_here,
-                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& w, Eigen::MatrixXd& potential)
+                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& w,
+                      Eigen::Ref<Eigen::MatrixXd> potential)
 {
   const int clusters = static_cast<int> (moved_here.cols ());
+  if (potential.rows () != clusters + 1 || potential.cols () != clusters + 1)
+    throw std::invalid_argument ("[pcl_crf::joint::clusterEdgePotential] the potential is not (K + 1) x (K + 1)");
   const double d = geometry.neighbour_distance (i);
   const double same = w (kClusterNeighbour) + w (kClusterWeightedNeighbour) / std::max (d, geometry.min_neighbour_distance);
-  potential.resize (clusters + 1, clusters + 1);
   for (int l = 0; l < clusters; ++l) {
     for (int k = 0; k < clusters; ++k)  // a rigid pair keeps its distance: no stiffness when k = l
       potential (k, l) = k == l ? same : w (kClusterStiffness) * stiffness (moved_here.col (k), moved_next.col (l), d);

@@ -36,7 +36,7 @@ normalise (Small& message)
 
 /** out(t) = max_s in(s) + P(s, t): a message along P's rows to its columns. */
 void
-maxToColumns (const Small& in, const Eigen::MatrixXd& P, Small& out)
+maxToColumns (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
   out.resize (P.cols ());
   for (Eigen::Index t = 0; t < P.cols (); ++t)
@@ -46,7 +46,7 @@ maxToColumns (const Small& in, const Eigen::MatrixXd& P, Small& out)
 
 /** out(s) = max_t in(t) + P(s, t): a message along P's columns to its rows. */
 void
-maxToRows (const Small& in, const Eigen::MatrixXd& P, Small& out)
+maxToRows (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
   out = P.col (0).array () + in (0);
   for (Eigen::Index t = 1; t < P.cols (); ++t)
@@ -205,7 +205,7 @@ private:
   Small
   evidenceOf (int i) const
   {
-    const Eigen::MatrixXd& rung = rungs_[i];
+    const auto rung = rungs_[i];
     if (options_.evidence == ClusterEvidence::MapAssociation)
       return rung.row (map_association_[i]).transpose ();
     return (rung.colwise () + association_.unary[i]).colwise ().maxCoeff ().transpose ();
@@ -243,6 +243,21 @@ private:
     return zero;
   }
 
+  /** The clustering-edge potential between points i and i + 1 (in edges_). */
+  Eigen::Map<Eigen::MatrixXd>
+  edge (int i)
+  {
+    const int states = clusters_ + 1;
+    return {edges_.data () + static_cast<std::size_t> (i) * states * states, states, states};
+  }
+
+  Eigen::Map<const Eigen::MatrixXd>
+  edge (int i) const
+  {
+    const int states = clusters_ + 1;
+    return {edges_.data () + static_cast<std::size_t> (i) * states * states, states, states};
+  }
+
   /** T_l s_i for every cluster l into \a m (2 x K, its storage reused). */
   void
   moved (int i, Eigen::Matrix2Xd& m) const
@@ -270,12 +285,13 @@ private:
     else
       for (int l : changed)
         updateRungColumn (g_, motions_[l], w_, l, rungs_);
-    edges_.resize (static_cast<std::size_t> (std::max (n_ - 1, 0)));
+    const int states = clusters_ + 1;
+    edges_.resize (static_cast<std::size_t> (std::max (n_ - 1, 0)) * states * states);
     Eigen::Matrix2Xd here, next;
     moved (0, here);
     for (int i = 0; i + 1 < n_; ++i) {
       moved (i + 1, next);
-      clusterEdgePotential (g_, i, here, next, w_, edges_[i]);
+      clusterEdgePotential (g_, i, here, next, w_, edge (i));
       here.swap (next);
     }
     motions_computed_ = motions_;
@@ -307,7 +323,7 @@ private:
   void
   visit (int i, const Messages& in, Messages& out, bool to_right, bool to_left, const Small& a_in, const Small& c_in)
   {
-    const Eigen::MatrixXd& rung = rungs_[i];
+    const auto rung = rungs_[i];
     Small fresh;
     maxToColumns (a_in, rung, fresh);
     assign (out.associationToCluster (i), fresh);
@@ -317,14 +333,14 @@ private:
       maxToColumns (a_in - in.associationBackward (i) + in.clusterToAssociation (i),
                     association_.pairwise[i], fresh);
       assign (out.associationForward (i), fresh);
-      maxToColumns (c_in - in.clusterBackward (i) + in.associationToCluster (i), edges_[i], fresh);
+      maxToColumns (c_in - in.clusterBackward (i) + in.associationToCluster (i), edge (i), fresh);
       assign (out.clusterForward (i), fresh);
     }
     if (to_left && i > 0) {
       maxToRows (a_in - in.associationForward (i - 1) + in.clusterToAssociation (i),
                  association_.pairwise[i - 1], fresh);
       assign (out.associationBackward (i - 1), fresh);
-      maxToRows (c_in - in.clusterForward (i - 1) + in.associationToCluster (i), edges_[i - 1], fresh);
+      maxToRows (c_in - in.clusterForward (i - 1) + in.associationToCluster (i), edge (i - 1), fresh);
       assign (out.clusterBackward (i - 1), fresh);
     }
   }
@@ -427,8 +443,8 @@ private:
   std::vector<int> map_cluster_;
   int changes_ = 0;      // MAP changes in this iteration
   double change_ = 0.0;  // largest message change in this iteration (log domain)
-  std::vector<Eigen::MatrixXd> rungs_;  // S_i x (K + 1) per point
-  std::vector<Eigen::MatrixXd> edges_;  // (K + 1) x (K + 1) per chain edge
+  RungPotentials rungs_;       // S_i x (K + 1) per point
+  std::vector<double> edges_;  // (K + 1) x (K + 1) per chain edge, column-major, edge after edge
   std::vector<Rigid2d> motions_computed_;  // the motions rungs_ and edges_ hold
 };
 

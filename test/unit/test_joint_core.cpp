@@ -205,13 +205,13 @@ TEST (JointFeatures, PotentialsEqualWeightsTimesFeatures)
     moved.col (l) = ladder.motions[l] * ladder.geometry.source.col (i);
     moved_next.col (l) = ladder.motions[l] * ladder.geometry.source.col (i + 1);
   }
-  std::vector<Eigen::MatrixXd> rungs;
-  Eigen::MatrixXd edge;
+  joint::RungPotentials rungs;
+  Eigen::MatrixXd edge (3, 3);
   joint::rungPotentials (ladder.geometry, ladder.motions, w, rungs);
   joint::clusterEdgePotential (ladder.geometry, i, moved, moved_next, w, edge);
   ASSERT_EQ (rungs.size (), static_cast<std::size_t> (ladder.geometry.size ()));
   for (int p = 0; p < ladder.geometry.size (); ++p) {
-    const Eigen::MatrixXd& rung = rungs[p];
+    const auto rung = rungs[p];
     ASSERT_EQ (rung.rows (), ladder.geometry.associationStates (p));
     ASSERT_EQ (rung.cols (), 3);
     for (int s = 0; s < rung.rows (); ++s)

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <vector>
 
 namespace pcl_crf {
@@ -86,13 +87,47 @@ makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& targ
                     const matching::Candidates& candidates, double min_spacing = 0.01,
                     double min_neighbour_distance = 0.01);
 
+/** \brief The rung log-potentials of every point in one buffer: rung i is
+ *  S_a(i) x (K + 1), column-major. One allocation per ladder instead of one matrix
+ *  per point (a ladder of a few hundred points otherwise spends hundreds of
+ *  allocations on its rungs alone).
+ */
+class RungPotentials
+{
+public:
+  /** \brief Sizes rung i to associationStates (i) x (clusters + 1) for every point of
+   *  \a geometry (the values are left unset; the buffer keeps its capacity). */
+  void
+  resize (const LadderGeometry& geometry, int clusters);
+
+  /** \brief Number of rungs (points). */
+  std::size_t
+  size () const { return rows_.size (); }
+
+  bool
+  empty () const { return rows_.empty (); }
+
+  /** \brief Rung i. */
+  Eigen::Map<Eigen::MatrixXd>
+  operator[] (std::size_t i) { return {values_.data () + offsets_[i], rows_[i], columns_}; }
+
+  Eigen::Map<const Eigen::MatrixXd>
+  operator[] (std::size_t i) const { return {values_.data () + offsets_[i], rows_[i], columns_}; }
+
+private:
+  std::vector<double> values_;
+  std::vector<std::size_t> offsets_;  // rung i's first entry in values_
+  std::vector<int> rows_;             // S_a(i)
+  int columns_ = 0;                   // K + 1
+};
+
 /** \brief Rung log-potentials of every point under the K motions: rungs[i] is
  *  S_a x (K + 1) for point i, entry (s, l) = w · f_rung(s, l) (rungFeatures ()).
  *  \param[in] motions the K cluster motions T_target_source
  */
 void
 rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& weights,
-                std::vector<Eigen::MatrixXd>& rungs);
+                RungPotentials& rungs);
 
 /** \brief Column l (a real cluster) of every rung of rungPotentials () under a new
  *  motion T_l, with log(1 + x) for log1p (x): twice as fast here, and within 2e-15 in
@@ -101,7 +136,7 @@ rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& moti
  */
 void
 updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& weights, int l,
-                  std::vector<Eigen::MatrixXd>& rungs);
+                  RungPotentials& rungs);
 
 /** \brief Rung features of point i in states (s, l), kJointWeightCount wide (zeros outside
  *  the rung block). \param[in] motions the K cluster motions T_target_source */
@@ -110,10 +145,13 @@ rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::ve
 
 /** \brief Clustering edge log-potential between points i and i + 1: (K + 1) x (K + 1).
  *  \param[in] moved_here 2 x K, column l = T_l s_i; \param[in] moved_next the same for s_{i+1}
+ *  \param[out] potential already (K + 1) x (K + 1) (a reference, so that a ladder can keep
+ *  all its edges in one buffer)
  */
 void
 clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& moved_here,
-                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& weights, Eigen::MatrixXd& potential);
+                      const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& weights,
+                      Eigen::Ref<Eigen::MatrixXd> potential);
 
 /** \brief Clustering edge features in states (k, l), kJointWeightCount wide. */
 Eigen::VectorXd
