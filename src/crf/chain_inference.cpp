@@ -501,30 +501,13 @@ sumProduct (const ChainPotentials& chain, ChainInference& workspace, bool with_e
   return marginalResultOf (workspace, with_edge_marginals);
 }
 
-namespace {
-
-/** maxAndSumProduct () of either kind of chain. */
-template <typename Chain> void
-mapAndMarginals (const Chain& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals)
-{
-  workspace.compute (chain, kMapAndMarginals);
-  map = mapResultOf (workspace);
-  marginals = marginalResultOf (workspace, false);
-}
-
-}  // namespace
-
-void
-maxAndSumProduct (const ChainPotentials& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals)
-{
-  mapAndMarginals (chain, workspace, map, marginals);
-}
-
 void
 maxAndSumProduct (const PackedChainPotentials& chain, ChainInference& workspace, MapResult& map,
                   MarginalResult& marginals)
 {
-  mapAndMarginals (chain, workspace, map, marginals);
+  workspace.compute (chain, kMapAndMarginals);
+  map = mapResultOf (workspace);
+  marginals = marginalResultOf (workspace, false);
 }
 
 MarginalResult

@@ -251,13 +251,6 @@ private:
     return {edges_.data () + static_cast<std::size_t> (i) * states * states, states, states};
   }
 
-  Eigen::Map<const Eigen::MatrixXd>
-  edge (int i) const
-  {
-    const int states = clusters_ + 1;
-    return {edges_.data () + static_cast<std::size_t> (i) * states * states, states, states};
-  }
-
   /** T_l s_i for every cluster l into \a m (2 x K, its storage reused). */
   void
   moved (int i, Eigen::Matrix2Xd& m) const

@@ -200,19 +200,15 @@ sumProduct (const ChainPotentials& chain, bool with_edge_marginals = false);
 MarginalResult
 sumProduct (const ChainPotentials& chain, ChainInference& workspace, bool with_edge_marginals = false);
 
-/** \brief maxProduct () and sumProduct () (node marginals) of one chain in one pass
- *  over its potentials: the chain is validated and packed once, and the results are
- *  those of the two calls.
+/** \brief maxProduct () and sumProduct () (node marginals) of one packed chain in one
+ *  pass over its potentials, used as it is (no copy): the results are those of the two
+ *  calls. A ChainPotentials is packed with PackedChainPotentials::assign ().
  *  \param[in] chain the potentials
  *  \param[in,out] workspace the buffers (see ChainInference)
  *  \param[out] map the MAP labelling and its log-score
  *  \param[out] marginals log Z and the node marginals (no edge marginals)
  *  \throws std::invalid_argument when the chain is invalid or every labelling is forbidden.
  */
-void
-maxAndSumProduct (const ChainPotentials& chain, ChainInference& workspace, MapResult& map, MarginalResult& marginals);
-
-/** \brief As above for a packed chain (used as it is, without a copy). */
 void
 maxAndSumProduct (const PackedChainPotentials& chain, ChainInference& workspace, MapResult& map,
                   MarginalResult& marginals);
