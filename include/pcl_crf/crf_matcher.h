@@ -277,8 +277,8 @@ private:
   Eigen::Matrix2Xd source_xy_;
   std::vector<int> source_index_;
   /** the prepared target (immutable, shared by clones), its settings and cloud indices. */
-  std::shared_ptr<const matching::PreparedTarget> target_prepared_;
-  matching::CandidateParameters target_prepared_parameters_;
+  std::shared_ptr<const matching::MatchingTarget> target_prepared_;
+  matching::MatchingParameters target_prepared_parameters_;
   std::vector<int> target_index_;
 
   matching::MatchResult result_;

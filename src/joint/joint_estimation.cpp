@@ -3,6 +3,7 @@
 #include <pcl_crf/clustering/point_pairs.h>
 #include <pcl_crf/clustering/scan_clustering.h>
 #include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/lifted_matches.h>
 
 #include <algorithm>
 #include <numeric>
@@ -124,19 +125,11 @@ refineStaticMotion (const Eigen::Matrix2Xd& source, const matching::PreparedTarg
   result.T_source_target = T_static.inverse ();
 }
 
-}  // namespace
-
+/** The joint model at the resolution of the scans it is given. */
 JointResult
-estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
-               const JointModel& model, const JointParameters& parameters)
+estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
+                          const JointModel& model, const JointParameters& parameters)
 {
-  if (!model.isTrained ())
-    fail ("the model is not trained (train or load one first)");
-  validateParameters (parameters);
-  if (source.cols () == 0 || target.cols () == 0)
-    fail ("the source and target scans must not be empty");
-  if (!source.allFinite () || !target.allFinite ())
-    fail ("the scans hold NaN or infinite points");
   const matching::PreparedTarget prepared = matching::prepareTarget (target, model.matcher.parameters.candidates);
   const matching::MotionGuess guess = matching::MotionGuess::fromOdometry (odometry);
   AssociationStage stage = firstAssociationPass (source, prepared, guess, model.matcher);
@@ -162,6 +155,75 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   assemble (round, stage.pass.candidates, odometry, result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
   return result;
+}
+
+/** Renumbers the clusters of \a result largest first after their sizes changed. */
+void
+numberLargestFirst (JointResult& result)
+{
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster, clusters);
+  std::vector<int> order (static_cast<std::size_t> (clusters));
+  std::iota (order.begin (), order.end (), 0);
+  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
+  std::vector<int> rank (static_cast<std::size_t> (clusters));
+  std::vector<Rigid2d> motions;
+  result.cluster_sizes.clear ();
+  for (int k = 0; k < clusters; ++k) {
+    rank[order[k]] = k;
+    motions.push_back (result.cluster_motions[order[k]]);
+    result.cluster_sizes.push_back (sizes[order[k]]);
+  }
+  result.cluster_motions = std::move (motions);
+  result.outliers.clear ();
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    int& cluster = result.source_cluster[i];
+    if (cluster == kOutlierCluster)
+      result.outliers.push_back (static_cast<int> (i));
+    else
+      cluster = rank[cluster];
+  }
+  if (result.static_cluster >= 0)
+    result.static_cluster = rank[result.static_cluster];
+}
+
+/** The joint result on the thinned scans lifted to the full ones: every point takes
+ *  its anchor's cluster, its match is lifted under that cluster's motion. */
+JointResult
+liftJointResult (JointResult coarse, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                 const matching::ThinnedPair& thinned)
+{
+  std::vector<int> groups (coarse.source_cluster.size ());
+  for (std::size_t k = 0; k < groups.size (); ++k)
+    groups[k] = coarse.source_cluster[k] == kOutlierCluster ? -1 : coarse.source_cluster[k];
+  JointResult result = std::move (coarse);
+  result.source_match =
+      matching::liftMatches (source, target, thinned, result.source_match, groups, result.cluster_motions);
+  result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
+  numberLargestFirst (result);
+  return result;
+}
+
+}  // namespace
+
+JointResult
+estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
+               const JointModel& model, const JointParameters& parameters)
+{
+  if (!model.isTrained ())
+    fail ("the model is not trained (train or load one first)");
+  validateParameters (parameters);
+  if (source.cols () == 0 || target.cols () == 0)
+    fail ("the source and target scans must not be empty");
+  if (!source.allFinite () || !target.allFinite ())
+    fail ("the scans hold NaN or infinite points");
+  const matching::ThinnedPair thinned =
+      matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
+  if (!thinned.isThinned (source, target))
+    return estimateAtScanResolution (source, target, odometry, model, parameters);
+  return liftJointResult (
+      estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters), source,
+      target, thinned);
 }
 
 }  // namespace joint

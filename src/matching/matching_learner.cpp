@@ -1,6 +1,7 @@
 #include <pcl_crf/crf/pseudo_likelihood.h>
 #include <pcl_crf/matching/boosting_features.h>
 #include <pcl_crf/matching/matching_chain.h>
+#include <pcl_crf/core/scan_thinning.h>
 #include <pcl_crf/matching/matching_learner.h>
 #include <pcl_crf/matching/raw_features.h>
 #include <pcl_crf/matching/scan_matching.h>
@@ -133,6 +134,22 @@ trainCrfWeights (const std::vector<TrainingPair>& pairs, const StageModel& stage
   return fit.x;
 }
 
+/** The median beam spacing of the training scans (MatchingParameters::training_beam_spacing). */
+double
+trainingBeamSpacing (const std::vector<ScanPair>& pairs)
+{
+  std::vector<double> spacings;
+  for (const ScanPair& pair : pairs)
+    for (const Eigen::Matrix2Xd* scan : {&pair.source, &pair.target})
+      if (const double spacing = medianBeamSpacing (*scan); spacing > 0.0)
+        spacings.push_back (spacing);
+  if (spacings.empty ())
+    return 0.0;
+  const auto middle = spacings.begin () + static_cast<std::ptrdiff_t> (spacings.size () / 2);
+  std::nth_element (spacings.begin (), middle, spacings.end ());
+  return *middle;
+}
+
 }  // namespace
 
 CrfMatchingModel
@@ -144,6 +161,7 @@ trainCrfMatching (const std::vector<ScanPair>& pairs, const MatchingParameters& 
   std::vector<TrainingPair> training = prepareTrainingPairs (pairs, parameters);
   CrfMatchingModel model;
   model.parameters = parameters;
+  model.parameters.training_beam_spacing = trainingBeamSpacing (pairs);
   TrainingReport local_report;
   for (int k = 0; k < parameters.passes; ++k) {
     StageTrainingReport stage_report;

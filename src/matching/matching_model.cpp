@@ -52,6 +52,8 @@ validateParameters (const MatchingParameters& p)
   require (p.prior_sigma > 0.0, "prior_sigma must be > 0");
   require (p.residual_scale > 0.0 && std::isfinite (p.residual_scale), "residual_scale must be a positive distance [m]");
   require (p.passes == 1 || p.passes == 2, "passes must be 1 or 2");
+  require (p.training_beam_spacing >= 0.0 && p.training_beam_spacing <= M_PI,
+           "training_beam_spacing must be an angle in [0, pi] rad (0: never thin)");
   require (p.fit.iterations >= 1, "fit iterations must be >= 1");
   require (p.fit.initial_scale > 0.0 && std::isfinite (p.fit.initial_scale) && p.fit.final_scale > 0.0 &&
                std::isfinite (p.fit.final_scale),

@@ -54,6 +54,7 @@ readParameters (ModelReader& reader)
   if (metric != "point_to_point" && metric != "point_to_line")
     reader.fail ("'fit_metric' must be point_to_point or point_to_line, not '" + metric + "'");
   p.fit.metric = metric == "point_to_line" ? FitMetric::PointToLine : FitMetric::PointToPoint;
+  p.training_beam_spacing = reader.optionalReal ("training_beam_spacing", 0.0, 0.0, M_PI);
   try {
     validateParameters (p);
   }
@@ -118,6 +119,7 @@ writeModel (const CrfMatchingModel& model, std::ostream& os)
        << "fit_final_scale " << number (p.fit.final_scale) << '\n'
        << "fit_reassociate " << (p.fit.reassociate ? 1 : 0) << '\n'
        << "fit_metric " << (p.fit.metric == FitMetric::PointToLine ? "point_to_line" : "point_to_point") << '\n'
+       << "training_beam_spacing " << number (p.training_beam_spacing) << '\n'
        << "stages " << model.stages.size () << '\n';
   for (std::size_t k = 0; k < model.stages.size (); ++k) {
     const StageModel& stage = model.stages[k];

@@ -35,6 +35,11 @@ public:
   std::vector<std::string>
   nextLine (const std::string& expected)
   {
+    if (!pending_.empty ()) {
+      std::vector<std::string> tokens;
+      tokens.swap (pending_);
+      return tokens;
+    }
     std::string line;
     while (std::getline (is_, line)) {
       ++line_number_;
@@ -83,6 +88,16 @@ public:
       fail ("'" + key + "' = " + std::to_string (value) + " is outside [" + std::to_string (min) + ", " +
             std::to_string (max) + "]");
     return value;
+  }
+
+  /** A "key value" line that older files lack: \a absent when the next line is another key. */
+  double
+  optionalReal (const std::string& key, double absent, double min, double max)
+  {
+    std::vector<std::string> tokens = nextLine ("'" + key + "' or what follows it");
+    const bool present = tokens.front () == key;
+    pending_ = std::move (tokens);
+    return present ? real (key, min, max) : absent;
   }
 
   int
@@ -148,6 +163,7 @@ private:
   std::istream& is_;
   std::string name_;
   int line_number_ = 0;
+  std::vector<std::string> pending_;  // a line read ahead by optionalReal
 };
 
 

@@ -1,4 +1,5 @@
 #include <pcl_crf/matching/scan_matching.h>
+#include <pcl_crf/matching/lifted_matches.h>
 #include <pcl_crf/matching/matching_chain.h>
 #include <pcl_crf/matching/robust_rigid_fit.h>
 
@@ -46,6 +47,61 @@ checkModel (const CrfMatchingModel& model)
   if (!model.isTrained ())
     throw std::invalid_argument ("[pcl_crf::matching::matchScans] the model is not trained (train or load one first)");
   validateParameters (model.parameters);
+}
+
+/** The candidates and marginals of a full source point: those of its anchor, as full
+ *  target indices, the MAP candidate replaced by the lifted \a match (a candidate
+ *  that then repeats it gives it its probability and is dropped). */
+void
+appendLiftedStates (const MatchResult& coarse, const ThinnedScan& target, int anchor, int match,
+                    Candidates& candidates, std::vector<Eigen::VectorXd>& marginals)
+{
+  const int count = coarse.candidates.count (anchor);
+  const Eigen::VectorXd& p = coarse.marginals[anchor];
+  const int map_state = match == kNoMatch ? -1 : coarse.candidates.find (anchor, coarse.matches[anchor]);
+  std::vector<double> probabilities;
+  int map_position = -1;
+  double merged = 0.0;
+  for (int c = 0; c < count; ++c) {
+    const int full = c == map_state ? match : target.kept[coarse.candidates.target (anchor, c)];
+    if (c != map_state && full == match) {
+      merged += p (c);
+      continue;
+    }
+    if (c == map_state)
+      map_position = static_cast<int> (probabilities.size ());
+    candidates.targets.push_back (full);
+    probabilities.push_back (p (c));
+  }
+  if (map_position >= 0)
+    probabilities[map_position] += merged;
+  probabilities.push_back (p (count));  // the outlier state
+  candidates.offsets.push_back (static_cast<int> (candidates.targets.size ()));
+  marginals.push_back (Eigen::Map<const Eigen::VectorXd> (probabilities.data (),
+                                                          static_cast<Eigen::Index> (probabilities.size ())));
+}
+
+/** A result on the thinned scans lifted to the full ones (see matchScans). */
+MatchResult
+liftMatchResult (const MatchResult& coarse, const Eigen::Matrix2Xd& source, const MatchingTarget& target,
+                 const ThinnedPair& thinned)
+{
+  std::vector<int> groups (coarse.matches.size (), -1);
+  for (std::size_t k = 0; k < groups.size (); ++k)
+    groups[k] = coarse.matches[k] == kNoMatch ? -1 : 0;
+  MatchResult result;
+  result.matches = liftMatches (source, target.points, thinned, coarse.matches, groups, {coarse.T_target_source});
+  result.map_probability.resize (source.cols ());
+  for (int i = 0; i < static_cast<int> (source.cols ()); ++i) {
+    const int anchor = thinned.anchors[i];
+    appendLiftedStates (coarse, target.thinned, anchor, result.matches[i], result.candidates, result.marginals);
+    result.map_probability (i) = coarse.map_probability (anchor);
+  }
+  result.T_target_source = coarse.T_target_source;
+  result.passes = coarse.passes;
+  result.inlier_count = static_cast<int> (
+      std::count_if (result.matches.begin (), result.matches.end (), [] (int j) { return j != kNoMatch; }));
+  return result;
 }
 
 }  // namespace
@@ -98,14 +154,41 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
   return result;
 }
 
+MatchingTarget
+prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters& parameters)
+{
+  if (!target.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::prepareMatchingTarget] the target scan holds NaN or infinite points");
+  MatchingTarget prepared;
+  prepared.points = target;
+  prepared.thinned = thinToSpacing (target, parameters.training_beam_spacing);
+  prepared.prepared = prepareTarget (prepared.thinned.points, parameters.candidates);
+  return prepared;
+}
+
+MatchResult
+matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
+            const CrfMatchingModel& model)
+{
+  checkModel (model);
+  if (!source.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  ThinnedPair thinned;
+  thinned.source = thinToSpacing (source, model.parameters.training_beam_spacing);
+  thinned.target = target.thinned;
+  if (!thinned.isThinned (source, target.points))
+    return matchScans (source, target.prepared, guess, model);
+  thinned.anchors = thinnedAnchors (source, thinned.source);
+  const MatchResult coarse = matchScans (thinned.source.points, target.prepared, guess, model);
+  return liftMatchResult (coarse, source, target, thinned);
+}
+
 MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
   checkModel (model);
-  if (!target.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the target scan holds NaN or infinite points");
-  return matchScans (source, prepareTarget (target, model.parameters.candidates), guess, model);
+  return matchScans (source, prepareMatchingTarget (target, model.parameters), guess, model);
 }
 
 }  // namespace matching

@@ -15,11 +15,12 @@ namespace detail {
 
 /** \brief true when the target preparation depends on the same settings. */
 inline bool
-sameTargetSettings (const matching::CandidateParameters& a, const matching::CandidateParameters& b)
+sameTargetSettings (const matching::MatchingParameters& a, const matching::MatchingParameters& b)
 {
-  return a.shape_position_scale == b.shape_position_scale &&
-         a.segments.breakpoint_angle == b.segments.breakpoint_angle &&
-         a.segments.range_noise == b.segments.range_noise;
+  return a.candidates.shape_position_scale == b.candidates.shape_position_scale &&
+         a.candidates.segments.breakpoint_angle == b.candidates.segments.breakpoint_angle &&
+         a.candidates.segments.range_noise == b.candidates.segments.range_noise &&
+         a.training_beam_spacing == b.training_beam_spacing;
 }
 
 }  // namespace detail
@@ -123,16 +124,16 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
     return false;
   }
   if (target_cloud_updated_ || !target_prepared_ ||
-      !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters.candidates)) {
+      !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters)) {
     target_prepared_.reset ();
     const Eigen::Matrix2Xd target_xy = toMatrix2X (*target_, &target_index_);
     if (target_xy.cols () == 0) {
       PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point.\n", getClassName ().c_str (), method);
       return false;
     }
-    target_prepared_ = std::make_shared<const matching::PreparedTarget> (
-        matching::prepareTarget (target_xy, model_.parameters.candidates));
-    target_prepared_parameters_ = model_.parameters.candidates;
+    target_prepared_ = std::make_shared<const matching::MatchingTarget> (
+        matching::prepareMatchingTarget (target_xy, model_.parameters));
+    target_prepared_parameters_ = model_.parameters;
     target_cloud_updated_ = false;
   }
   return true;
@@ -172,7 +173,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineCorrespondences (pcl::Cor
   if (!initCompute () || !computeMatches ())
     return;
   const double max_squared = max_distance * max_distance;  // +inf for the default
-  const Eigen::Matrix2Xd& target_xy = target_prepared_->scan.points;
+  const Eigen::Matrix2Xd& target_xy = target_prepared_->points;
   correspondences.reserve (source_index_.size ());
   for (std::size_t k = 0; k < source_index_.size (); ++k) {
     const int j = result_.matches[k];
@@ -197,8 +198,8 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences
   try {  // target → source with the inverse guess (no prior)
     matching::MotionGuess inverse;
     inverse.T_target_source = guess_.T_target_source.inverse ();
-    backward = matching::matchScans (target_prepared_->scan.points,
-                                     matching::prepareTarget (source_xy_, model_.parameters.candidates), inverse, model_);
+    backward = matching::matchScans (target_prepared_->points,
+                                     matching::prepareMatchingTarget (source_xy_, model_.parameters), inverse, model_);
   }
   catch (const std::exception& error) {
     PCL_ERROR ("[pcl_crf::%s::determineReciprocalCorrespondences] %s\n", getClassName ().c_str (), error.what ());

@@ -70,6 +70,13 @@ struct MatchingParameters
   int passes = 2;
   /** estimation of the rigid motion after each pass. */
   RobustFitParameters fit;
+  /** angle between the beams of the scans the model was trained on [rad]: set by
+   *  trainCrfMatching (the median medianBeamSpacing of its scans). Scans at least 1.5
+   *  times finer are matched thinned to it (thinToSpacing), their associations lifted
+   *  back to every point (liftMatches), since the shape features and the learned
+   *  weights are those of that resolution; 0: never thin (models written before
+   *  this field). */
+  double training_beam_spacing = 0.0;
 };
 
 /** \brief Learned parameters of one association pass: the two boosted

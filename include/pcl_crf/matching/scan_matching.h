@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/core/scan_thinning.h>
 #include <pcl_crf/crf/chain_inference.h>
 #include <pcl_crf/matching/boosting_features.h>
 #include <pcl_crf/matching/matching_model.h>
@@ -64,7 +65,8 @@ PassResult
 runPass (const ScanShape& source, const PreparedTarget& target, const MotionGuess& guess, const Rigid2d& T_current,
          const StageModel& stage, const MatchingParameters& parameters, const ShapeNeighbours* earlier = nullptr);
 
-/** \brief CRF-Matching of a source scan against a prepared target scan.
+/** \brief CRF-Matching of a source scan against a prepared target scan, both at
+ *  the resolution they come in (no thinning; see the MatchingTarget overload).
  *
  *  Runs model.parameters.passes passes (stage k of the model in pass k, the last
  *  stage again when the model has fewer): pass 1 from the guess, pass 2 from
@@ -86,7 +88,35 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model);
 
-/** \brief Same, preparing the target scan first. */
+/** \brief A target scan prepared for CRF-Matching at the resolution of the model:
+ *  thinned to MatchingParameters::training_beam_spacing when it is at least 1.5 times
+ *  finer (thinToSpacing), then prepareTarget of the points kept. */
+struct MatchingTarget
+{
+  /** the full target scan [m]. */
+  Eigen::Matrix2Xd points;
+  /** the points the model sees. */
+  ThinnedScan thinned;
+  /** prepareTarget of thinned.points. */
+  PreparedTarget prepared;
+};
+
+/** \brief prepareTarget at the resolution of the model. \throws std::invalid_argument for non-finite points. */
+MatchingTarget
+prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters& parameters);
+
+/** \brief CRF-Matching at the resolution the model was trained at: when either scan
+ *  is at least 1.5 times finer than MatchingParameters::training_beam_spacing, both
+ *  are thinned to it, matched, and the associations lifted back to every point
+ *  (liftMatches, under the estimated motion). A point's candidates and marginals are
+ *  then those of the kept point that stands for it (thinnedAnchors), each kept target
+ *  point's index in the full scan, its MAP one replaced by the lifted match.
+ */
+MatchResult
+matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
+            const CrfMatchingModel& model);
+
+/** \brief Same, preparing the target scan first (prepareMatchingTarget). */
 MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const MotionGuess& guess,
             const CrfMatchingModel& model);

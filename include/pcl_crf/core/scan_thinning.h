@@ -1,0 +1,61 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Median angle between the bearings of consecutive points of a scan, seen
+ *  from its origin (the sensor) [rad]; 0 with fewer than two points off the origin.
+ *
+ *  Missing returns only add a few multiples of the step, which the median ignores.
+ */
+double
+medianBeamSpacing (const Eigen::Matrix2Xd& points);
+
+/** \brief How many beams of a scan \a scan_spacing apart one beam of a model trained
+ *  at \a model_spacing spans: round(model_spacing / scan_spacing), at least 1; 1 when
+ *  either spacing is 0 (unknown).
+ */
+int
+thinningFactor (double scan_spacing, double model_spacing);
+
+/** \brief A scan thinned to a coarser angular resolution: the points kept, in scan order. */
+struct ThinnedScan
+{
+  /** indices of the kept points in the full scan, increasing. */
+  std::vector<int> kept;
+  /** the kept points (points.col (k) is the full scan's point kept[k]) [m]. */
+  Eigen::Matrix2Xd points;
+
+  /** \brief true when points were dropped. */
+  bool
+  isThinned (Eigen::Index full_size) const
+  {
+    return static_cast<Eigen::Index> (kept.size ()) != full_size;
+  }
+};
+
+/** \brief Thins a scan by \a factor beams: in scan order, a point is kept when its
+ *  bearing is at least (factor − ½) × \a scan_spacing from the last kept point's (the
+ *  first point is kept), so that a missing return only moves the next kept point.
+ *  All points are kept when factor ≤ 1.
+ *  \param[in] points the scan in beam order, in its sensor frame [m]
+ *  \param[in] factor thinningFactor
+ *  \param[in] scan_spacing medianBeamSpacing of the scan [rad]
+ */
+ThinnedScan
+thinScan (const Eigen::Matrix2Xd& points, int factor, double scan_spacing);
+
+/** \brief thinScan to the beam spacing a model was trained at (no thinning when the
+ *  scan is less than 1.5 times finer, or when \a model_spacing is 0).
+ *
+ *  \code
+ *  const pcl_crf::ThinnedScan coarse = pcl_crf::thinToSpacing (hokuyo_xy, 0.5 * M_PI / 180);  // 0.25° → 0.5°
+ *  \endcode
+ */
+ThinnedScan
+thinToSpacing (const Eigen::Matrix2Xd& points, double model_spacing);
+
+}  // namespace pcl_crf
