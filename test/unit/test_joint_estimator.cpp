@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -100,6 +101,48 @@ TEST (JointEstimation, AssociatesAMovingCarAlongItsMotionWhereCrfMatchingAloneDo
   const joint::JointResult together = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
   EXPECT_LE (correctOn (pair, car, alone.matches), 3);           // measured: 0 of 62
   EXPECT_GE (correctOn (pair, car, together.source_match), 18);  // measured: 23 of 62
+}
+
+TEST (JointEstimation, FinerScansAreEstimatedAtTheResolutionItWasTrainedAt)
+{
+  // The shipped model learned from 0.5° scans; on 0.25° scans (1081 beams over 270°)
+  // it runs on every other beam and lifts its clusters and associations back.
+  // Measured on these six pairs: association accuracy 0.833, against 0.776 on every beam.
+  simulation::SimulatorConfig config;
+  config.seed = 13;
+  config.laser.beam_count = 1081;
+  config.laser.field_of_view = 1.5 * M_PI;
+  const std::vector<ScanPair> pairs = simulation::ScanPairSimulator (config).simulateDataset (0, 6);
+  joint::JointModel at_full_resolution = shippedModel ();
+  at_full_resolution.matcher.parameters.training_beam_spacing = 0.0;
+  double thinned = 0.0, full = 0.0;
+  for (const ScanPair& pair : pairs) {
+    SCOPED_TRACE (pair.name);
+    const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
+    ASSERT_EQ (r.source_match.size (), static_cast<std::size_t> (pair.source.cols ()));
+    ASSERT_EQ (r.source_cluster.size (), r.source_match.size ());
+    // Clusters numbered largest first, their sizes and the outlier list those of the lifted labels.
+    std::vector<int> sizes (r.cluster_motions.size (), 0), outliers;
+    for (std::size_t i = 0; i < r.source_cluster.size (); ++i) {
+      if (r.source_cluster[i] == kOutlierCluster) {
+        outliers.push_back (static_cast<int> (i));
+        EXPECT_EQ (r.source_match[i], kNoMatch);
+        continue;
+      }
+      ASSERT_LT (r.source_cluster[i], static_cast<int> (sizes.size ()));
+      ++sizes[r.source_cluster[i]];
+    }
+    EXPECT_EQ (r.cluster_sizes, sizes);
+    EXPECT_TRUE (std::is_sorted (sizes.rbegin (), sizes.rend ()));
+    EXPECT_EQ (r.outliers, outliers);
+    ASSERT_GE (r.static_cluster, 0);
+    EXPECT_TRUE (r.T_source_target.isApprox (r.cluster_motions[r.static_cluster].inverse ()));
+    thinned += scorePair (pair, joint::toPrediction (pair.source, r)).association_accuracy / pairs.size ();
+    const joint::JointResult every_beam = joint::estimateJoint (pair.source, pair.target, pair.odometry, at_full_resolution);
+    full += scorePair (pair, joint::toPrediction (pair.source, every_beam)).association_accuracy / pairs.size ();
+  }
+  EXPECT_GT (thinned, 0.81);
+  EXPECT_GT (thinned, full + 0.03);
 }
 
 TEST (JointEstimation, StaticClusterStartsFromPassOnesRobustMotion)

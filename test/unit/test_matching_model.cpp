@@ -33,6 +33,17 @@ simulatedPairs (std::uint64_t seed, std::size_t count)
   return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
 }
 
+/** Simulated street pairs seen by a Hokuyo-like laser: 1081 beams over 270° (0.25° apart). */
+std::vector<pcl_crf::ScanPair>
+hokuyoPairs (std::uint64_t seed, std::size_t count)
+{
+  pcl_crf::simulation::SimulatorConfig config;
+  config.seed = seed;
+  config.laser.beam_count = 1081;
+  config.laser.field_of_view = 1.5 * M_PI;
+  return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
+}
+
 /** Fraction of source points whose predicted match equals the true one. */
 double
 associationAccuracy (const std::vector<int>& predicted, const std::vector<int>& truth)
@@ -236,6 +247,52 @@ TEST_F (MatchingModelTest, MalformedModelFilesGiveClearErrors)
   catch (const std::runtime_error& error) {
     EXPECT_NE (std::string (error.what ()).find ("/nonexistent/crf.model"), std::string::npos);
   }
+}
+
+TEST_F (MatchingModelTest, RecordsTheBeamSpacingItWasTrainedAt)
+{
+  EXPECT_NEAR (model_->parameters.training_beam_spacing, M_PI / 360, 1e-6);  // 361 beams over 180°
+  std::stringstream text;
+  m::writeModel (*model_, text);
+  EXPECT_EQ (m::readModel (text).parameters.training_beam_spacing, model_->parameters.training_beam_spacing);
+  // Files written before the field read as "never thin".
+  std::stringstream spacing;
+  spacing << "training_beam_spacing " << text.str ().substr (text.str ().find ("training_beam_spacing ") + 22);
+  const std::string line = spacing.str ().substr (0, spacing.str ().find ('\n') + 1);
+  std::istringstream older (editedModel (*model_, line, ""));
+  EXPECT_EQ (m::readModel (older).parameters.training_beam_spacing, 0.0);
+  const std::string negative = readError (editedModel (*model_, line, "training_beam_spacing -0.1\n"));
+  EXPECT_NE (negative.find ("'training_beam_spacing'"), std::string::npos) << negative;
+}
+
+TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)
+{
+  // The model learned from 0.5° scans; on 0.25° scans it matches every other beam and
+  // lifts the associations back. Measured on these eight pairs: 0.830 association
+  // accuracy, against 0.808 matching every beam.
+  m::CrfMatchingModel at_full_resolution = *model_;
+  at_full_resolution.parameters.training_beam_spacing = 0.0;
+  double thinned = 0.0, full = 0.0;
+  const auto pairs = hokuyoPairs (13, 8);
+  for (const auto& pair : pairs) {
+    const m::MotionGuess guess = m::MotionGuess::fromOdometry (pair.odometry);
+    const m::MatchResult result = m::matchScans (pair.source, pair.target, guess, *model_);
+    ASSERT_EQ (result.matches.size (), static_cast<std::size_t> (pair.source.cols ()));
+    ASSERT_EQ (result.candidates.size (), pair.source.cols ());
+    ASSERT_EQ (result.marginals.size (), result.matches.size ());
+    ASSERT_EQ (result.map_probability.size (), pair.source.cols ());
+    for (int i = 0; i < pair.source.cols (); ++i) {
+      EXPECT_EQ (result.marginals[i].size (), result.candidates.count (i) + 1);
+      EXPECT_NEAR (result.marginals[i].sum (), 1.0, 1e-9);
+      if (result.matches[i] != pcl_crf::kNoMatch)
+        EXPECT_GE (result.candidates.find (i, result.matches[i]), 0) << i;
+    }
+    thinned += associationAccuracy (result.matches, pair.source_match) / pairs.size ();
+    full += associationAccuracy (m::matchScans (pair.source, pair.target, guess, at_full_resolution).matches,
+                                 pair.source_match) / pairs.size ();
+  }
+  EXPECT_GT (thinned, 0.81);
+  EXPECT_GT (thinned, full + 0.01);
 }
 
 TEST_F (MatchingModelTest, EvaluationMethodPredictsInTheCommonForm)
