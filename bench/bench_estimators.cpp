@@ -1,7 +1,8 @@
 // Times every registered method per scan pair, next to PCL ICP on the same pairs.
 //
 // Scenarios: the shipped 361-beam test split (2-4 m apart), simulated 1081-beam
-// pairs (Hokuyo-like) and consecutive 361-beam scans at 75 Hz (SICK-like).
+// pairs over 270° (Hokuyo-like, 0.25° apart, 2-4 m apart) and consecutive 361-beam
+// scans over 180° at 75 Hz (SICK-like).
 // Learned methods load data/models/<name>.model. After Google Benchmark's own
 // report, a table gives the median time per pair and the ratio to ICP.
 //
@@ -10,6 +11,8 @@
 #include <pcl_crf/evaluation/method.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/simulation/scan_pair_simulator.h>
+
+#include <cmath>
 
 #include <benchmark/benchmark.h>
 
@@ -33,10 +36,11 @@ struct Scenario
 };
 
 std::vector<pcl_crf::ScanPair>
-simulatePairs (int beams, pcl_crf::simulation::ScanSpacing spacing, std::size_t count)
+simulatePairs (int beams, double field_of_view, pcl_crf::simulation::ScanSpacing spacing, std::size_t count)
 {
   pcl_crf::simulation::SimulatorConfig config;
   config.laser.beam_count = beams;
+  config.laser.field_of_view = field_of_view;
   config.spacing = spacing;
   config.seed = 4242;
   return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
@@ -49,8 +53,8 @@ makeScenarios ()
   const fs::path shipped = fs::path (PCL_CRF_SOURCE_DIR) / "data" / "default" / "test";
   if (fs::is_directory (shipped))
     scenarios.push_back ({"361_beams_2-4m", pcl_crf::loadDataset (shipped.string ())});
-  scenarios.push_back ({"361_beams_75Hz", simulatePairs (361, pcl_crf::simulation::ScanSpacing::Consecutive, 20)});
-  scenarios.push_back ({"1081_beams_2-4m", simulatePairs (1081, pcl_crf::simulation::ScanSpacing::Travel, 20)});
+  scenarios.push_back ({"361_beams_75Hz", simulatePairs (361, M_PI, pcl_crf::simulation::ScanSpacing::Consecutive, 20)});
+  scenarios.push_back ({"1081_beams_270deg", simulatePairs (1081, 1.5 * M_PI, pcl_crf::simulation::ScanSpacing::Travel, 20)});
   return scenarios;
 }
 

@@ -2,6 +2,7 @@
 
 #include <pcl_crf/cloud_conversion.h>
 #include <pcl_crf/crf_matcher.h>
+#include <pcl_crf/simulation/scan_pair_simulator.h>
 
 #include "synthetic_scene.h"
 
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -270,6 +272,71 @@ TYPED_TEST (CrfMatcherTest, WorksInsideIterativeClosestPoint)
   const Eigen::Matrix4f error = icp.getFinalTransformation ().inverse () * toMatrix4f (this->truth_);
   EXPECT_LT ((error.template block<2, 1> (0, 3).norm ()), 2e-3);
   EXPECT_LT (std::abs (std::atan2 (error (1, 0), error (0, 0))), 5e-4);
+}
+
+}  // namespace
+
+namespace {
+
+/** \a xy as a cloud with a NaN point before the points that would land at \a nan_at;
+ *  \a index receives the cloud index of every column. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+cloudWithNans (const Eigen::Matrix2Xd& xy, const std::vector<std::size_t>& nan_at, std::vector<int>& index)
+{
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  const float nan = std::numeric_limits<float>::quiet_NaN ();
+  index.clear ();
+  for (Eigen::Index k = 0; k < xy.cols (); ++k) {
+    if (std::find (nan_at.begin (), nan_at.end (), cloud->size ()) != nan_at.end ())
+      cloud->push_back (pcl::PointXYZ (nan, nan, nan));
+    index.push_back (static_cast<int> (cloud->size ()));
+    cloud->push_back (pcl::PointXYZ (static_cast<float> (xy (0, k)), static_cast<float> (xy (1, k)), 0.0f));
+  }
+  return cloud;
+}
+
+TEST (CrfMatcherOnAFinerScan, MatchesThinnedLikeMatchScansWithCloudIndicesMappedBack)
+{
+  // A Hokuyo-like pair (1081 beams over 270°, 0.25° apart) with NaN points in both
+  // clouds: the adapter thins the valid points to the model's 0.5° as matchScans does,
+  // and maps the lifted matches back to cloud indices.
+  pcl_crf::simulation::SimulatorConfig config;
+  config.seed = 5;
+  config.laser.beam_count = 1081;
+  config.laser.field_of_view = 1.5 * M_PI;
+  const pcl_crf::ScanPair pair = pcl_crf::simulation::ScanPairSimulator (config).simulate (0);
+  // The simulator's clouds hold floats; the adapter sees them as floats too.
+  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
+  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
+  ASSERT_LT (pcl_crf::thinToSpacing (source, defaultModel ().parameters.training_beam_spacing).kept.size (),
+             static_cast<std::size_t> (source.cols ()));  // it is thinned
+  std::vector<int> source_index, target_index;
+  const auto source_cloud = cloudWithNans (source, {10, 500}, source_index);
+  const auto target_cloud = cloudWithNans (target, {3, 300}, target_index);
+  pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ> matcher;
+  matcher.setModel (defaultModel ());
+  matcher.setOdometry (pair.odometry);
+  matcher.setInputSource (source_cloud);
+  matcher.setInputTarget (target_cloud);
+  pcl::Correspondences correspondences;
+  matcher.determineCorrespondences (correspondences);
+
+  const pcl_crf::matching::MatchResult direct = pcl_crf::matching::matchScans (
+      source, target, pcl_crf::matching::MotionGuess::fromOdometry (pair.odometry), defaultModel ());
+  pcl::Correspondences expected;
+  for (Eigen::Index k = 0; k < source.cols (); ++k)
+    if (direct.matches[k] != pcl_crf::kNoMatch)
+      expected.emplace_back (source_index[k], target_index[direct.matches[k]], 0.0f);
+  ASSERT_EQ (correspondences.size (), expected.size ());
+  EXPECT_GT (expected.size (), source.cols () / 2);
+  for (std::size_t c = 0; c < expected.size (); ++c) {
+    EXPECT_EQ (correspondences[c].index_query, expected[c].index_query);
+    EXPECT_EQ (correspondences[c].index_match, expected[c].index_match);
+  }
+  // Every valid source point has states, the NaN ones none.
+  EXPECT_TRUE (matcher.getMarginals ()[10].size () == 0);
+  EXPECT_EQ (matcher.getMarginals ()[source_index[700]].size (),
+             static_cast<Eigen::Index> (matcher.getCandidates ()[source_index[700]].size ()) + 1);
 }
 
 }  // namespace
