@@ -52,7 +52,7 @@ thinningFactor (double scan_spacing, double model_spacing)
   if (scan_spacing == 0.0 || model_spacing == 0.0)
     return 1;
   const double ratio = model_spacing / scan_spacing;
-  return ratio >= 1.5 ? static_cast<int> (std::lround (ratio)) : 1;
+  return std::max (1, static_cast<int> (std::floor (std::min (ratio + 0.1, 1e6))));
 }
 
 ThinnedScan

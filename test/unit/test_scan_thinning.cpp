@@ -54,9 +54,12 @@ TEST (ScanThinning, MedianSpacingIgnoresMissingReturns)
 TEST (ScanThinning, FactorIsTheRoundedRatioOfTheSpacings)
 {
   EXPECT_EQ (thinningFactor (0.25 * kDegree, 0.5 * kDegree), 2);
-  EXPECT_EQ (thinningFactor (kDegree / 3, 0.5 * kDegree), 2);  // 1.5 rounds up
+  EXPECT_EQ (thinningFactor (0.2501 * kDegree, 0.5 * kDegree), 2);  // measured a little coarser
+  EXPECT_EQ (thinningFactor (0.2 * kDegree, 0.5 * kDegree), 2);     // never coarser than the model
+  EXPECT_EQ (thinningFactor (kDegree / 6, 0.5 * kDegree), 3);
   EXPECT_EQ (thinningFactor (0.125 * kDegree, 0.5 * kDegree), 4);
-  EXPECT_EQ (thinningFactor (0.4 * kDegree, 0.5 * kDegree), 1);  // 1.25: left alone
+  EXPECT_EQ (thinningFactor (kDegree / 3, 0.5 * kDegree), 1);  // 1.5: 0.67° would be coarser
+  EXPECT_EQ (thinningFactor (0.4 * kDegree, 0.5 * kDegree), 1);
   EXPECT_EQ (thinningFactor (kDegree, 0.5 * kDegree), 1);        // coarser than the model
   EXPECT_EQ (thinningFactor (0.0, 0.5 * kDegree), 1);            // unknown spacings
   EXPECT_EQ (thinningFactor (0.25 * kDegree, 0.0), 1);
@@ -89,7 +92,7 @@ TEST (ScanThinning, FullTurnThroughTheBackOfTheSensorKeepsEveryOtherBeam)
 TEST (ScanThinning, ScansAtOrBelowTheModelsResolutionAreLeftAlone)
 {
   const Eigen::Matrix2Xd scan = arcScan (-90 * kDegree, 0.5 * kDegree, range (361));
-  for (const double model_spacing : {0.5 * kDegree, kDegree / 3, 0.0}) {
+  for (const double model_spacing : {0.5 * kDegree, 0.9 * kDegree, 0.0}) {
     const ThinnedScan thinned = thinToSpacing (scan, model_spacing);
     EXPECT_EQ (thinned.kept, range (361));
     EXPECT_FALSE (thinned.isThinned (scan.cols ()));

@@ -71,8 +71,8 @@ struct MatchingParameters
   /** estimation of the rigid motion after each pass. */
   RobustFitParameters fit;
   /** angle between the beams of the scans the model was trained on [rad]: set by
-   *  trainCrfMatching (the median medianBeamSpacing of its scans). Scans at least 1.5
-   *  times finer are matched thinned to it (thinToSpacing), their associations lifted
+   *  trainCrfMatching (the median medianBeamSpacing of its scans). Scans about twice
+   *  as fine or finer are matched thinned to it (thinToSpacing), their associations lifted
    *  back to every point (liftMatches), since the shape features and the learned
    *  weights are those of that resolution; 0: never thin (models written before
    *  this field). */

@@ -89,8 +89,8 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
             const CrfMatchingModel& model);
 
 /** \brief A target scan prepared for CRF-Matching at the resolution of the model:
- *  thinned to MatchingParameters::training_beam_spacing when it is at least 1.5 times
- *  finer (thinToSpacing), then prepareTarget of the points kept. */
+ *  thinned to MatchingParameters::training_beam_spacing when it is about twice as fine
+ *  or finer (thinToSpacing), then prepareTarget of the points kept. */
 struct MatchingTarget
 {
   /** the full target scan [m]. */
@@ -106,7 +106,7 @@ MatchingTarget
 prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters& parameters);
 
 /** \brief CRF-Matching at the resolution the model was trained at: when either scan
- *  is at least 1.5 times finer than MatchingParameters::training_beam_spacing, both
+ *  is about twice as fine as MatchingParameters::training_beam_spacing or finer, both
  *  are thinned to it, matched, and the associations lifted back to every point
  *  (liftMatches, under the estimated motion). A point's candidates and marginals are
  *  then those of the kept point that stands for it (thinnedAnchors), each kept target
