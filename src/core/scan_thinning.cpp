@@ -15,25 +15,27 @@ angleBetween (double a, double b)
   return std::remainder (a - b, 2.0 * M_PI);
 }
 
-double
-bearing (const Eigen::Matrix2Xd& points, Eigen::Index i)
+/** The bearing of every point seen from the origin [rad]. */
+std::vector<double>
+bearingsOf (const Eigen::Matrix2Xd& points)
 {
-  return std::atan2 (points (1, i), points (0, i));
+  std::vector<double> bearings (static_cast<std::size_t> (points.cols ()));
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+    bearings[static_cast<std::size_t> (i)] = std::atan2 (points (1, i), points (0, i));
+  return bearings;
 }
 
-}  // namespace
-
 double
-medianBeamSpacing (const Eigen::Matrix2Xd& points)
+medianSpacing (const Eigen::Matrix2Xd& points, const std::vector<double>& bearings)
 {
   std::vector<double> steps;
-  steps.reserve (static_cast<std::size_t> (std::max<Eigen::Index> (points.cols () - 1, 0)));
+  steps.reserve (bearings.size ());
   Eigen::Index previous = -1;
   for (Eigen::Index i = 0; i < points.cols (); ++i) {
     if (points.col (i).squaredNorm () == 0.0)
       continue;  // no bearing at the sensor
     if (previous >= 0)
-      steps.push_back (std::abs (angleBetween (bearing (points, i), bearing (points, previous))));
+      steps.push_back (std::abs (angleBetween (bearings[i], bearings[previous])));
     previous = i;
   }
   if (steps.empty ())
@@ -41,6 +43,47 @@ medianBeamSpacing (const Eigen::Matrix2Xd& points)
   const auto middle = steps.begin () + static_cast<std::ptrdiff_t> (steps.size () / 2);
   std::nth_element (steps.begin (), middle, steps.end ());
   return *middle;
+}
+
+ThinnedScan
+keepAll (const Eigen::Matrix2Xd& points)
+{
+  ThinnedScan thinned;
+  thinned.kept.resize (static_cast<std::size_t> (points.cols ()));
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+    thinned.kept[static_cast<std::size_t> (i)] = static_cast<int> (i);
+  thinned.points = points;
+  return thinned;
+}
+
+/** thinScan with the bearings computed. */
+ThinnedScan
+thinAlong (const Eigen::Matrix2Xd& points, const std::vector<double>& bearings, int factor, double scan_spacing)
+{
+  const Eigen::Index n = points.cols ();
+  if (factor <= 1 || n == 0)
+    return keepAll (points);
+  ThinnedScan thinned;
+  // The beam of every point, counted from the first along the unwrapped bearings.
+  double swept = 0.0;
+  thinned.kept.push_back (0);
+  for (Eigen::Index i = 1; i < n; ++i) {
+    swept += angleBetween (bearings[i], bearings[i - 1]);
+    if (std::llround (swept / scan_spacing) % factor == 0)
+      thinned.kept.push_back (static_cast<int> (i));
+  }
+  thinned.points.resize (2, static_cast<Eigen::Index> (thinned.kept.size ()));
+  for (std::size_t k = 0; k < thinned.kept.size (); ++k)
+    thinned.points.col (static_cast<Eigen::Index> (k)) = points.col (thinned.kept[k]);
+  return thinned;
+}
+
+}  // namespace
+
+double
+medianBeamSpacing (const Eigen::Matrix2Xd& points)
+{
+  return medianSpacing (points, bearingsOf (points));
 }
 
 int
@@ -58,37 +101,17 @@ thinningFactor (double scan_spacing, double model_spacing)
 ThinnedScan
 thinScan (const Eigen::Matrix2Xd& points, int factor, double scan_spacing)
 {
-  ThinnedScan thinned;
-  const Eigen::Index n = points.cols ();
-  if (factor <= 1 || n == 0) {
-    thinned.kept.resize (static_cast<std::size_t> (n));
-    for (Eigen::Index i = 0; i < n; ++i)
-      thinned.kept[static_cast<std::size_t> (i)] = static_cast<int> (i);
-    thinned.points = points;
-    return thinned;
-  }
-  // The beam of every point, counted from the first along the unwrapped bearings.
-  double swept = 0.0;
-  double previous = bearing (points, 0);
-  thinned.kept.push_back (0);
-  for (Eigen::Index i = 1; i < n; ++i) {
-    const double here = bearing (points, i);
-    swept += angleBetween (here, previous);
-    previous = here;
-    if (std::llround (swept / scan_spacing) % factor == 0)
-      thinned.kept.push_back (static_cast<int> (i));
-  }
-  thinned.points.resize (2, static_cast<Eigen::Index> (thinned.kept.size ()));
-  for (std::size_t k = 0; k < thinned.kept.size (); ++k)
-    thinned.points.col (static_cast<Eigen::Index> (k)) = points.col (thinned.kept[k]);
-  return thinned;
+  return factor <= 1 ? keepAll (points) : thinAlong (points, bearingsOf (points), factor, scan_spacing);
 }
 
 ThinnedScan
 thinToSpacing (const Eigen::Matrix2Xd& points, double model_spacing)
 {
-  const double scan_spacing = medianBeamSpacing (points);
-  return thinScan (points, thinningFactor (scan_spacing, model_spacing), scan_spacing);
+  if (model_spacing == 0.0)
+    return keepAll (points);
+  const std::vector<double> bearings = bearingsOf (points);
+  const double scan_spacing = medianSpacing (points, bearings);
+  return thinAlong (points, bearings, thinningFactor (scan_spacing, model_spacing), scan_spacing);
 }
 
 }  // namespace pcl_crf
