@@ -1,6 +1,7 @@
 #include <pcl_crf/matching/lifted_matches.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
