@@ -1,4 +1,5 @@
 // The joint model end to end: the shipped model on shipped pairs, the PCL adapter, bad input.
+#include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/joint_crf_estimator.h>
@@ -256,6 +257,56 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   for (const pcl::Correspondence& c : estimator.getCorrespondences ())
     EXPECT_NE (c.index_query, 5);
   EXPECT_GT (estimator.getCorrespondences ().size (), source->size () / 2);
+}
+
+TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
+{
+  // A 1081-beam pair over 270° with a NaN point: the adapter's clusters and
+  // correspondences are estimateJoint's on the valid points (thinned and lifted),
+  // mapped to cloud indices.
+  simulation::SimulatorConfig config;
+  config.seed = 21;
+  config.laser.beam_count = 1081;
+  config.laser.field_of_view = 1.5 * M_PI;
+  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (0);
+  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
+  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
+  ASSERT_LT (thinToSpacing (source, shippedModel ().matcher.parameters.training_beam_spacing).kept.size (),
+             static_cast<std::size_t> (source.cols ()));  // it is thinned
+  auto source_cloud = toCloud (source);
+  source_cloud->insert (source_cloud->begin () + 7,
+                        pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  ASSERT_TRUE (estimator.loadModel (kModelPath));
+  estimator.setInputSource (source_cloud);
+  estimator.setInputTarget (toCloud (target));
+  Eigen::Matrix4f odometry = Eigen::Matrix4f::Identity ();
+  odometry.topLeftCorner<2, 2> () = pair.odometry.T_source_target.linear ().cast<float> ();
+  odometry.block<2, 1> (0, 3) = pair.odometry.T_source_target.translation ().cast<float> ();
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+
+  Odometry as_given = pair.odometry;  // what the adapter sees: the float matrix
+  as_given.T_source_target = toRigid2d (odometry);
+  const joint::JointResult direct = joint::estimateJoint (source, target, as_given, shippedModel ());
+  const auto cloudIndex = [] (int k) { return k < 7 ? k : k + 1; };  // the NaN point sits at 7
+  pcl::Correspondences expected;
+  for (std::size_t k = 0; k < direct.source_match.size (); ++k)
+    if (direct.source_match[k] != kNoMatch)
+      expected.emplace_back (cloudIndex (static_cast<int> (k)), direct.source_match[k], 0.0f);
+  const pcl::Correspondences& found = estimator.getCorrespondences ();
+  ASSERT_EQ (found.size (), expected.size ());
+  for (std::size_t c = 0; c < found.size (); ++c) {
+    EXPECT_EQ (found[c].index_query, expected[c].index_query);
+    EXPECT_EQ (found[c].index_match, expected[c].index_match);
+  }
+  const auto& clusters = estimator.getClusters ();
+  ASSERT_EQ (clusters.size (), direct.cluster_motions.size ());
+  for (std::size_t l = 0; l < clusters.size (); ++l)
+    EXPECT_EQ (clusters[l].indices.size (), static_cast<std::size_t> (direct.cluster_sizes[l]));
+  EXPECT_EQ (estimator.getOutliers ().size (), direct.outliers.size ());
 }
 
 TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
