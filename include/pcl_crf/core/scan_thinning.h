@@ -40,10 +40,10 @@ struct ThinnedScan
   }
 };
 
-/** \brief Thins a scan by \a factor beams: in scan order, a point is kept when its
- *  bearing is at least (factor − ½) × \a scan_spacing from the last kept point's (the
- *  first point is kept), so that a missing return only moves the next kept point.
- *  All points are kept when factor ≤ 1.
+/** \brief Thins a scan by \a factor beams: every point's beam is counted from the
+ *  first point's along the unwrapped bearings (round(swept angle / \a scan_spacing)),
+ *  and the points on every factor-th beam are kept, so that a missing return does not
+ *  shift the beams after it. All points are kept when factor ≤ 1.
  *  \param[in] points the scan in beam order, in its sensor frame [m]
  *  \param[in] factor thinningFactor
  *  \param[in] scan_spacing medianBeamSpacing of the scan [rad]
