@@ -71,6 +71,37 @@ pruneClusters (const LadderResult& round, const JointParameters& parameters, int
   return true;
 }
 
+/** Renumbers the clusters of \a result largest first (their sizes, the
+ *  outlier list and the static cluster follow). */
+void
+numberLargestFirst (JointResult& result)
+{
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster, clusters);
+  std::vector<int> order (static_cast<std::size_t> (clusters));
+  std::iota (order.begin (), order.end (), 0);
+  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
+  std::vector<int> rank (static_cast<std::size_t> (clusters));
+  std::vector<Rigid2d> motions;
+  result.cluster_sizes.clear ();
+  for (int k = 0; k < clusters; ++k) {
+    rank[order[k]] = k;
+    motions.push_back (result.cluster_motions[order[k]]);
+    result.cluster_sizes.push_back (sizes[order[k]]);
+  }
+  result.cluster_motions = std::move (motions);
+  result.outliers.clear ();
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    int& cluster = result.source_cluster[i];
+    if (cluster == kOutlierCluster)
+      result.outliers.push_back (static_cast<int> (i));
+    else
+      cluster = rank[cluster];
+  }
+  if (result.static_cluster >= 0)
+    result.static_cluster = rank[result.static_cluster];
+}
+
 /** Fills the result from the last round: clusters numbered largest first, the
  *  static one nearest to the odometry. */
 void
@@ -79,26 +110,16 @@ assemble (const LadderResult& round, const matching::Candidates& candidates, con
 {
   const int clusters = static_cast<int> (round.motions.size ());
   const int n = static_cast<int> (round.cluster.size ());
-  const std::vector<int> sizes = clustering::clusterSizes (round.cluster, clusters);  // the outlier cluster K is left out
-  std::vector<int> order (static_cast<std::size_t> (clusters));
-  std::iota (order.begin (), order.end (), 0);
-  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
-  std::vector<int> rank (static_cast<std::size_t> (clusters));
-  for (int k = 0; k < clusters; ++k) {
-    rank[order[k]] = k;
-    result.cluster_motions.push_back (round.motions[order[k]]);
-    result.cluster_sizes.push_back (sizes[order[k]]);
-  }
+  result.cluster_motions = round.motions;
   result.source_match.assign (static_cast<std::size_t> (n), kNoMatch);
   result.source_cluster.assign (static_cast<std::size_t> (n), kOutlierCluster);
   for (int i = 0; i < n; ++i) {
     if (round.association[i] < candidates.count (i))
       result.source_match[i] = candidates.target (i, round.association[i]);
-    if (round.cluster[i] < clusters)
-      result.source_cluster[i] = rank[round.cluster[i]];
-    else
-      result.outliers.push_back (i);
+    if (round.cluster[i] < clusters)  // the outlier cluster K stays kOutlierCluster
+      result.source_cluster[i] = round.cluster[i];
   }
+  numberLargestFirst (result);
   result.static_cluster = clustering::selectStaticCluster (result.cluster_motions, odometry, result.cluster_sizes);
   result.T_source_target =
       result.static_cluster >= 0 ? result.cluster_motions[result.static_cluster].inverse () : odometry.T_source_target;
@@ -155,36 +176,6 @@ estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   assemble (round, stage.pass.candidates, odometry, result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
   return result;
-}
-
-/** Renumbers the clusters of \a result largest first after their sizes changed. */
-void
-numberLargestFirst (JointResult& result)
-{
-  const int clusters = static_cast<int> (result.cluster_motions.size ());
-  const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster, clusters);
-  std::vector<int> order (static_cast<std::size_t> (clusters));
-  std::iota (order.begin (), order.end (), 0);
-  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
-  std::vector<int> rank (static_cast<std::size_t> (clusters));
-  std::vector<Rigid2d> motions;
-  result.cluster_sizes.clear ();
-  for (int k = 0; k < clusters; ++k) {
-    rank[order[k]] = k;
-    motions.push_back (result.cluster_motions[order[k]]);
-    result.cluster_sizes.push_back (sizes[order[k]]);
-  }
-  result.cluster_motions = std::move (motions);
-  result.outliers.clear ();
-  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
-    int& cluster = result.source_cluster[i];
-    if (cluster == kOutlierCluster)
-      result.outliers.push_back (static_cast<int> (i));
-    else
-      cluster = rank[cluster];
-  }
-  if (result.static_cluster >= 0)
-    result.static_cluster = rank[result.static_cluster];
 }
 
 /** The joint result on the thinned scans lifted to the full ones: every point takes

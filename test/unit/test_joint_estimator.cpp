@@ -226,9 +226,7 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   (*source)[5].x = std::numeric_limits<float>::quiet_NaN ();  // skipped, indices still refer to the cloud
   estimator.setInputSource (source);
   estimator.setInputTarget (toCloud (pair.target));
-  Eigen::Matrix4f odometry = Eigen::Matrix4f::Identity ();
-  odometry.topLeftCorner<2, 2> () = pair.odometry.T_source_target.linear ().cast<float> ();
-  odometry.block<2, 1> (0, 3) = pair.odometry.T_source_target.translation ().cast<float> ();
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
   estimator.setOdometry (odometry, pair.odometry.covariance);
   pcl::PointCloud<pcl::PointXYZ> aligned;
   estimator.align (aligned);
@@ -280,9 +278,7 @@ TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
   ASSERT_TRUE (estimator.loadModel (kModelPath));
   estimator.setInputSource (source_cloud);
   estimator.setInputTarget (toCloud (target));
-  Eigen::Matrix4f odometry = Eigen::Matrix4f::Identity ();
-  odometry.topLeftCorner<2, 2> () = pair.odometry.T_source_target.linear ().cast<float> ();
-  odometry.block<2, 1> (0, 3) = pair.odometry.T_source_target.translation ().cast<float> ();
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
   estimator.setOdometry (odometry, pair.odometry.covariance);
   pcl::PointCloud<pcl::PointXYZ> aligned;
   estimator.align (aligned);
