@@ -23,35 +23,45 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::joint::inferLadder] " + what);
 }
 
-/** Shifts a log-message to a maximum of 0 (a message is defined up to a constant). */
+/** out(t) = max_s in(s) + P(s, t) for a column-major \a rows x \a cols P: a message
+ *  along P's rows to its columns (plain loops: the vectors hold a handful of states,
+ *  too few for Eigen's packet reductions to pay off). */
 void
-normalise (Small& message)
+maxToColumns (const double* in, const double* P, int rows, int cols, Small& out)
 {
-  const double top = message.maxCoeff ();
-  if (std::isfinite (top))
-    message.array () -= top;
-  else
-    message.setZero ();
+  out.resize (cols);
+  for (int t = 0; t < cols; ++t, P += rows) {
+    double best = P[0] + in[0];
+    for (int s = 1; s < rows; ++s)
+      best = std::max (best, P[s] + in[s]);
+    out (t) = best;
+  }
 }
 
-/** out(t) = max_s in(s) + P(s, t): a message along P's rows to its columns. */
 void
 maxToColumns (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
-  out.resize (P.cols ());
-  for (Eigen::Index t = 0; t < P.cols (); ++t)
-    out (t) = (P.col (t) + in).maxCoeff ();
-  normalise (out);
+  maxToColumns (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), out);
 }
 
 /** out(s) = max_t in(t) + P(s, t): a message along P's columns to its rows. */
 void
+maxToRows (const double* in, const double* P, int rows, int cols, Small& out)
+{
+  out.resize (rows);
+  for (int s = 0; s < rows; ++s)
+    out (s) = P[s] + in[0];
+  for (int t = 1; t < cols; ++t) {
+    P += rows;
+    for (int s = 0; s < rows; ++s)
+      out (s) = std::max (out (s), P[s] + in[t]);
+  }
+}
+
+void
 maxToRows (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
-  out = P.col (0).array () + in (0);
-  for (Eigen::Index t = 1; t < P.cols (); ++t)
-    out = out.cwiseMax (P.col (t) + Small::Constant (P.rows (), in (t)));
-  normalise (out);
+  maxToRows (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), out);
 }
 
 Eigen::Index
@@ -290,14 +300,20 @@ private:
     motions_computed_ = motions_;
   }
 
-  /** m ← (1 − λ) fresh + λ m (log domain). */
+  /** m ← (1 − λ) fresh + λ m (log domain), \a fresh first shifted to a maximum of 0
+   *  (a message is defined up to a constant; all 0 when its maximum is not finite). */
   void
   assign (Messages::Message message, const Small& fresh)
   {
+    double top = fresh (0);
+    for (Eigen::Index k = 1; k < fresh.size (); ++k)
+      top = std::max (top, fresh (k));
+    const bool finite = std::isfinite (top);
     const double keep = options_.damping;
     double change = change_;  // a local: message (k) could alias change_, which would serialise the loop
     for (Eigen::Index k = 0; k < fresh.size (); ++k) {
-      const double next = (1.0 - keep) * fresh (k) + keep * message (k);
+      const double shifted = finite ? fresh (k) - top : 0.0;
+      const double next = (1.0 - keep) * shifted + keep * message (k);
       change = std::max (change, std::abs (next - message (k)));
       message (k) = next;
     }
