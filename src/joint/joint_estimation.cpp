@@ -2,6 +2,7 @@
 #include <pcl_crf/clustering/ego_cluster.h>
 #include <pcl_crf/clustering/point_pairs.h>
 #include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/core/knn_index.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/lifted_matches.h>
 
@@ -146,6 +147,33 @@ refineStaticMotion (const Eigen::Matrix2Xd& source, const matching::PreparedTarg
   result.T_source_target = T_static.inverse ();
 }
 
+/** The points of \a result with a match and a real cluster (not the outlier one). */
+std::vector<int>
+matchedClusteredPoints (const JointResult& result)
+{
+  std::vector<int> points;
+  for (int i = 0; i < static_cast<int> (result.source_match.size ()); ++i)
+    if (result.source_match[i] != kNoMatch && result.source_cluster[i] != kOutlierCluster)
+      points.push_back (i);
+  return points;
+}
+
+/** Each of \a matched takes the target point nearest to where its cluster's final
+ *  motion puts it: the correspondence step of ICP under the final motions. The ladder
+ *  chose among candidates found and scored under earlier motions; its matched-or-outlier
+ *  decisions and the clusters stand. */
+void
+associateUnderFinalMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
+                            const std::vector<int>& matched, JointResult& result)
+{
+  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (matched.size ()));
+  for (std::size_t k = 0; k < matched.size (); ++k)
+    moved.col (k) = result.cluster_motions[result.source_cluster[matched[k]]] * source.col (matched[k]);
+  const KnnIndex::Result nearest = target_points.search (moved, 1);  // one batched query
+  for (std::size_t k = 0; k < matched.size (); ++k)
+    result.source_match[matched[k]] = nearest.indices (0, static_cast<Eigen::Index> (k));
+}
+
 /** The joint model at the resolution of the scans it is given. */
 JointResult
 estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
@@ -175,22 +203,28 @@ estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   result.converged = round.converged;
   assemble (round, stage.pass.candidates, odometry, result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
+  associateUnderFinalMotions (source, prepared.index.points, matchedClusteredPoints (result), result);
   return result;
 }
 
 /** The joint result on the thinned scans lifted to the full ones: every point takes
- *  its anchor's cluster, its match is lifted under that cluster's motion. */
+ *  its anchor's cluster and matched-or-outlier decision, and the matched points of real
+ *  clusters their target point under their cluster's motion (as at scan resolution). */
 JointResult
 liftJointResult (JointResult coarse, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                  const matching::ThinnedPair& thinned)
 {
-  std::vector<int> groups (coarse.source_cluster.size ());
-  for (std::size_t k = 0; k < groups.size (); ++k)
-    groups[k] = coarse.source_cluster[k] == kOutlierCluster ? -1 : coarse.source_cluster[k];
   JointResult result = std::move (coarse);
-  result.source_match =
-      matching::liftMatches (source, target, thinned, result.source_match, groups, result.cluster_motions);
   result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
+  const std::vector<int> anchor_match = matching::liftLabels (thinned.anchors, result.source_match);
+  result.source_match.assign (anchor_match.size (), kNoMatch);
+  std::vector<int> matched;
+  for (int i = 0; i < static_cast<int> (anchor_match.size ()); ++i)
+    if (anchor_match[i] != kNoMatch && result.source_cluster[i] != kOutlierCluster)
+      matched.push_back (i);
+  KnnIndex target_points;
+  target_points.build (target);
+  associateUnderFinalMotions (source, target_points, matched, result);
   numberLargestFirst (result);
   return result;
 }

@@ -25,7 +25,9 @@ namespace joint {
  */
 struct JointResult
 {
-  /** per source point: its target point (MAP association), or kNoMatch. */
+  /** per source point: its target point, or kNoMatch (the MAP decision). A matched
+   *  point of a real cluster has the target point nearest to where its cluster's
+   *  final motion puts it. */
   std::vector<int> source_match;
   /** per source point: its cluster (numbered largest first), or kOutlierCluster. */
   std::vector<int> source_cluster;
@@ -112,7 +114,11 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  rounds of modified loopy max-product on the joint ladder CRF (inferLadder) with
  *  the motions refitted as messages flow, each followed by the removal of vacuous
  *  clusters (fewer than min_cluster_points points) and ambiguous ones (average
- *  N_eff above max_average_neff), until no cluster is removed.
+ *  N_eff above max_average_neff), until no cluster is removed. Finally the static
+ *  world's motion is refitted robustly, and every point the MAP matches and puts in a
+ *  real cluster takes the target point nearest to where its cluster's motion puts it
+ *  (the correspondence step of ICP under the final motions: the ladder chose among
+ *  candidates found under earlier motions).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
