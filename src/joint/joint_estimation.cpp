@@ -158,24 +158,40 @@ matchedClusteredPoints (const JointResult& result)
   return points;
 }
 
-/** Each of \a matched takes the target point nearest to where its cluster's final
- *  motion puts it: the correspondence step of ICP under the final motions. The ladder
- *  chose among candidates found and scored under earlier motions; its matched-or-outlier
- *  decisions and the clusters stand. */
+/** CRF-Clustering (the model's clustering weights) of the final associations: the
+ *  clusters and motions of \a result given its associations, which stand. Its
+ *  sum-product marginals and N_eff merging keep apart clusters whose motions differ by
+ *  little, which the ladder's hard refits let collapse into one. Without any
+ *  association the ladder's clusters stand. */
 void
-associateUnderFinalMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
-                            const std::vector<int>& matched, JointResult& result)
+clusterFinalAssociations (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
+                          const JointModel& model, const JointParameters& parameters, JointResult& result)
 {
-  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (matched.size ()));
-  for (std::size_t k = 0; k < matched.size (); ++k)
-    moved.col (k) = result.cluster_motions[result.source_cluster[matched[k]]] * source.col (matched[k]);
-  const KnnIndex::Result nearest = target_points.search (moved, 1);  // one batched query
-  for (std::size_t k = 0; k < matched.size (); ++k)
-    result.source_match[matched[k]] = nearest.indices (0, static_cast<Eigen::Index> (k));
+  clustering::CrfClusteringParameters settings = parameters.initial_clustering;
+  settings.features = model.initial_clustering.features;
+  const clustering::ScanClustering scan =
+      clustering::clusterScan (source, target, result.source_match, model.initial_clustering.weights, settings,
+                               &odometry, clustering::UnpairedLabelling::Outlier);
+  if (scan.motions.empty ())
+    return;
+  result.cluster_motions = scan.motions;
+  result.source_cluster = scan.source_cluster;
+  result.static_cluster = scan.static_cluster;
+  numberLargestFirst (result);
+  result.T_source_target =
+      result.static_cluster >= 0 ? result.cluster_motions[result.static_cluster].inverse () : odometry.T_source_target;
 }
 
-/** The joint model at the resolution of the scans it is given. */
-JointResult
+/** The joint model at the resolution of the scans it is given: the ladder's result
+ *  (its clusters and motions, under which the associations were taken) and the
+ *  final result (the same associations, the final clusters and motions). */
+struct ScanResolutionEstimate
+{
+  JointResult ladder;
+  JointResult result;
+};
+
+ScanResolutionEstimate
 estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
                           const JointModel& model, const JointParameters& parameters)
 {
@@ -203,11 +219,15 @@ estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   result.converged = round.converged;
   assemble (round, stage.pass.candidates, odometry, result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
-  associateUnderFinalMotions (source, prepared.index.points, matchedClusteredPoints (result), result);
-  return result;
+  associateUnderClusterMotions (source, prepared.index.points, matchedClusteredPoints (result), result.source_cluster,
+                                result.cluster_motions, result.source_match);
+  ScanResolutionEstimate estimate{result, result};
+  clusterFinalAssociations (source, target, odometry, model, parameters, estimate.result);
+  refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, estimate.result);
+  return estimate;
 }
 
-/** The joint result on the thinned scans lifted to the full ones: every point takes
+/** The ladder's result on the thinned scans lifted to the full ones: every point takes
  *  its anchor's cluster and matched-or-outlier decision, and the matched points of real
  *  clusters their target point under their cluster's motion (as at scan resolution). */
 JointResult
@@ -224,12 +244,38 @@ liftJointResult (JointResult coarse, const Eigen::Matrix2Xd& source, const Eigen
       matched.push_back (i);
   KnnIndex target_points;
   target_points.build (target);
-  associateUnderFinalMotions (source, target_points, matched, result);
+  associateUnderClusterMotions (source, target_points, matched, result.source_cluster, result.cluster_motions,
+                                result.source_match);
   numberLargestFirst (result);
   return result;
 }
 
 }  // namespace
+
+void
+associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
+                              const std::vector<int>& points, const std::vector<int>& cluster,
+                              const std::vector<Rigid2d>& motions, std::vector<int>& source_match)
+{
+  const auto n = static_cast<std::size_t> (source.cols ());
+  if (cluster.size () != n || source_match.size () != n)
+    throw std::invalid_argument ("[pcl_crf::joint::associateUnderClusterMotions] " + std::to_string (n) +
+                                 " source points, " + std::to_string (cluster.size ()) + " clusters and " +
+                                 std::to_string (source_match.size ()) + " matches: give one of each per point");
+  if (!points.empty () && target_points.size () == 0)
+    throw std::invalid_argument ("[pcl_crf::joint::associateUnderClusterMotions] the target has no point");
+  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k) {
+    const int i = points[k];
+    if (i < 0 || static_cast<std::size_t> (i) >= n || cluster[i] < 0 || cluster[i] >= static_cast<int> (motions.size ()))
+      throw std::invalid_argument ("[pcl_crf::joint::associateUnderClusterMotions] point " + std::to_string (i) +
+                                   " is not a source point of a cluster with a motion");
+    moved.col (k) = motions[cluster[i]] * source.col (i);
+  }
+  const KnnIndex::Result nearest = target_points.search (moved, 1);  // one batched query
+  for (std::size_t k = 0; k < points.size (); ++k)
+    source_match[points[k]] = nearest.indices (0, static_cast<Eigen::Index> (k));
+}
 
 JointResult
 estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
@@ -245,10 +291,14 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   if (!thinned.isThinned (source, target))
-    return estimateAtScanResolution (source, target, odometry, model, parameters);
-  return liftJointResult (
-      estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters), source,
-      target, thinned);
+    return estimateAtScanResolution (source, target, odometry, model, parameters).result;
+  const ScanResolutionEstimate coarse =
+      estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters);
+  JointResult result = coarse.result;  // the final clusters and motions, lifted below
+  result.source_match = liftJointResult (coarse.ladder, source, target, thinned).source_match;
+  result.source_cluster = matching::liftLabels (thinned.anchors, coarse.result.source_cluster);
+  numberLargestFirst (result);
+  return result;
 }
 
 }  // namespace joint

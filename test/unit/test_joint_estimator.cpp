@@ -1,4 +1,5 @@
 // The joint model end to end: the shipped model on shipped pairs, the PCL adapter, bad input.
+#include <pcl_crf/core/knn_index.h>
 #include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/joint/joint_estimation.h>
@@ -105,47 +106,63 @@ TEST (JointEstimation, AssociatesAMovingCarAlongItsMotionWhereCrfMatchingAloneDo
   EXPECT_GE (correctOn (pair, car, together.source_match), 18);  // measured: 23 of 62
 }
 
-/** Checks that every matched point of a real cluster has the target point nearest
- *  to where its cluster's motion puts it (ties: as near). \return points checked */
-int
-expectMatchesNearestUnderClusterMotions (const ScanPair& pair, const joint::JointResult& r)
+TEST (JointAssociation, TakesTheNearestTargetPointUnderEachClustersMotion)
 {
-  int checked = 0;
-  for (Eigen::Index i = 0; i < pair.source.cols (); ++i) {
-    if (r.source_match[i] == kNoMatch || r.source_cluster[i] == kOutlierCluster)
-      continue;
-    const Eigen::Vector2d moved = r.cluster_motions[r.source_cluster[i]] * pair.source.col (i);
-    double nearest = std::numeric_limits<double>::infinity ();
-    for (Eigen::Index j = 0; j < pair.target.cols (); ++j)
-      nearest = std::min (nearest, (pair.target.col (j) - moved).norm ());
-    EXPECT_NEAR ((pair.target.col (r.source_match[i]) - moved).norm (), nearest, 1e-12) << "source point " << i;
-    ++checked;
+  // Two clusters: a wall that stays (identity) and a box that moved 1 m along x. The
+  // target has both, sampled every 0.1 m; a point takes the target point nearest to
+  // where its own cluster's motion puts it, not the one nearest to itself.
+  Eigen::Matrix2Xd source (2, 6), target (2, 12);
+  for (int k = 0; k < 3; ++k) {
+    source.col (k) << 0.1 * k, 5.0;         // wall
+    source.col (3 + k) << 0.1 * k, 2.0;     // box, moves +1 m in x
   }
-  return checked;
+  for (int k = 0; k < 6; ++k) {
+    target.col (k) << 0.1 * k, 5.0;
+    target.col (6 + k) << 0.8 + 0.1 * k, 2.0;  // the box's new place: x from 0.8 to 1.3
+  }
+  KnnIndex target_points;
+  target_points.build (target);
+  const std::vector<Rigid2d> motions = {Rigid2d::Identity (), Rigid2d (Eigen::Translation2d (1.0, 0.0))};
+  const std::vector<int> cluster = {0, 0, 0, 1, 1, 1};
+  std::vector<int> match (6, kNoMatch);
+  joint::associateUnderClusterMotions (source, target_points, {0, 1, 3, 4, 5}, cluster, motions, match);
+  EXPECT_EQ (match, (std::vector<int>{0, 1, kNoMatch, 8, 9, 10}));  // point 2 was not asked for
+  EXPECT_THROW (joint::associateUnderClusterMotions (source, target_points, {6}, cluster, motions, match),
+                std::invalid_argument);  // not a source point
+  EXPECT_THROW (joint::associateUnderClusterMotions (source, target_points, {0}, {0, 0, 0}, motions, match),
+                std::invalid_argument);  // not one cluster per source point
+  EXPECT_THROW (joint::associateUnderClusterMotions (source, target_points, {0}, std::vector<int> (6, 2), motions, match),
+                std::invalid_argument);  // a cluster without a motion
+  EXPECT_THROW (joint::associateUnderClusterMotions (source, KnnIndex (), {0}, cluster, motions, match),
+                std::invalid_argument);  // empty target
 }
 
-TEST (JointEstimation, AssociatesMatchedPointsUnderTheirClustersFinalMotion)
+TEST (JointEstimation, FinalClustersKeepApartWhatTheLadderMerges)
 {
-  // The ladder picks among candidates found under earlier motions; the final step
-  // gives every matched point of a real cluster its nearest target point under its
-  // cluster's motion, at scan resolution and on thinned scans lifted back.
-  std::vector<ScanPair> pairs = {loadScanPair (kTestDir + "pair_0016"), loadScanPair (kTestDir + "pair_0019")};
-  simulation::SimulatorConfig hokuyo;
-  hokuyo.seed = 13;
-  hokuyo.laser.beam_count = 1081;
-  hokuyo.laser.field_of_view = 1.5 * M_PI;
-  pairs.push_back (simulation::ScanPairSimulator (hokuyo).simulate (0));
-  for (const ScanPair& pair : pairs) {
+  // Fresh pairs of the default distribution (the simulator's defaults, seed 3003, as
+  // scripts/heldout_table.sh draws them). Measured with the ladder's own clusters
+  // (before CRF-Clustering of the final associations gave the clusters): V 0.47, 0.00
+  // (the car left in the static world) and 0.00 (a static world split in two); now
+  // 0.87, 0.78 and 1.00.
+  simulation::SimulatorConfig config;
+  config.seed = 3003;
+  const simulation::ScanPairSimulator simulator (config);
+  const std::vector<std::pair<int, double>> expected = {{0, 0.8}, {3, 0.7}, {12, 0.99}};
+  for (const auto& [index, min_v] : expected) {
+    const ScanPair pair = simulator.simulate (index);
     SCOPED_TRACE (pair.name);
     const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
-    EXPECT_GT (expectMatchesNearestUnderClusterMotions (pair, r), pair.source.cols () / 3);
+    EXPECT_GE (scorePair (pair, joint::toPrediction (pair.source, r)).v_measure, min_v);
+    if (pair.objects.size () == 1) {
+      EXPECT_EQ (r.cluster_motions.size (), 1u);
+    }
   }
 }
 
 TEST (JointEstimation, AssociatesBetterThanCrfMatchingOnTheShippedTestSplit)
 {
-  // Measured: 0.831 against CRF-Matching's 0.813 (0.820 before the final step
-  // associated the matched points under their clusters' motions).
+  // Measured: 0.830 against CRF-Matching's 0.813 (0.820 before the matched points
+  // were associated under their clusters' final motions).
   const matching::CrfMatchingModel matcher =
       matching::loadModel (std::string (PCL_CRF_SOURCE_DIR) + "/data/models/crf-matching.model");
   const std::vector<ScanPair> pairs = loadDataset (kTestDir);
@@ -166,8 +183,8 @@ TEST (JointEstimation, FinerScansAreEstimatedAtTheResolutionItWasTrainedAt)
 {
   // The shipped model learned from 0.5° scans; on 0.25° scans (1081 beams over 270°)
   // it runs on every other beam and lifts its clusters and associations back.
-  // Measured on these six pairs: association accuracy 0.844 and motion-detection
-  // accuracy 0.959, against 0.817 and 0.817 on every beam.
+  // Measured on these six pairs: association accuracy 0.844, motion-detection accuracy
+  // 0.961 and V 0.540, against 0.817, 0.924 and 0.404 on every beam.
   simulation::SimulatorConfig config;
   config.seed = 13;
   config.laser.beam_count = 1081;
@@ -175,7 +192,7 @@ TEST (JointEstimation, FinerScansAreEstimatedAtTheResolutionItWasTrainedAt)
   const std::vector<ScanPair> pairs = simulation::ScanPairSimulator (config).simulateDataset (0, 6);
   joint::JointModel at_full_resolution = shippedModel ();
   at_full_resolution.matcher.parameters.training_beam_spacing = 0.0;
-  double thinned = 0.0, full = 0.0, thinned_detection = 0.0, full_detection = 0.0;
+  double thinned = 0.0, full = 0.0, thinned_detection = 0.0, full_detection = 0.0, thinned_v = 0.0, full_v = 0.0;
   for (const ScanPair& pair : pairs) {
     SCOPED_TRACE (pair.name);
     const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
@@ -200,15 +217,18 @@ TEST (JointEstimation, FinerScansAreEstimatedAtTheResolutionItWasTrainedAt)
     const PairScores scores = scorePair (pair, joint::toPrediction (pair.source, r));
     thinned += scores.association_accuracy / pairs.size ();
     thinned_detection += scores.cluster_accuracy / pairs.size ();
+    thinned_v += scores.v_measure / pairs.size ();
     const joint::JointResult every_beam = joint::estimateJoint (pair.source, pair.target, pair.odometry, at_full_resolution);
     const PairScores every_beam_scores = scorePair (pair, joint::toPrediction (pair.source, every_beam));
     full += every_beam_scores.association_accuracy / pairs.size ();
     full_detection += every_beam_scores.cluster_accuracy / pairs.size ();
+    full_v += every_beam_scores.v_measure / pairs.size ();
   }
   EXPECT_GT (thinned, 0.83);
   EXPECT_GT (thinned, full + 0.02);
-  EXPECT_GT (thinned_detection, 0.93);
-  EXPECT_GT (thinned_detection, full_detection + 0.1);
+  EXPECT_GT (thinned_detection, 0.94);
+  EXPECT_GT (thinned_detection, full_detection + 0.02);
+  EXPECT_GT (thinned_v, full_v + 0.1);
 }
 
 TEST (JointEstimation, StaticClusterStartsFromPassOnesRobustMotion)

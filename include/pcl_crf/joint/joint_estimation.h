@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pcl_crf/core/knn_index.h>
 #include <pcl_crf/core/prediction.h>
 #include <pcl_crf/core/scan_pair.h>
 #include <pcl_crf/crf/chain_potentials.h>
@@ -25,9 +26,9 @@ namespace joint {
  */
 struct JointResult
 {
-  /** per source point: its target point, or kNoMatch (the MAP decision). A matched
-   *  point of a real cluster has the target point nearest to where its cluster's
-   *  final motion puts it. */
+  /** per source point: its target point, or kNoMatch (the ladder's MAP decision). A
+   *  matched point of one of the ladder's clusters has the target point nearest to
+   *  where that cluster's final motion puts it (associateUnderClusterMotions ()). */
   std::vector<int> source_match;
   /** per source point: its cluster (numbered largest first), or kOutlierCluster. */
   std::vector<int> source_cluster;
@@ -114,11 +115,16 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  rounds of modified loopy max-product on the joint ladder CRF (inferLadder) with
  *  the motions refitted as messages flow, each followed by the removal of vacuous
  *  clusters (fewer than min_cluster_points points) and ambiguous ones (average
- *  N_eff above max_average_neff), until no cluster is removed. Finally the static
+ *  N_eff above max_average_neff), until no cluster is removed. Then the static
  *  world's motion is refitted robustly, and every point the MAP matches and puts in a
  *  real cluster takes the target point nearest to where its cluster's motion puts it
  *  (the correspondence step of ICP under the final motions: the ladder chose among
- *  candidates found under earlier motions).
+ *  candidates found under earlier motions). Finally CRF-Clustering (the model's
+ *  clustering weights, sum-product marginals, N_eff merging) of those associations
+ *  gives the clusters and motions of the result, the static world's motion refitted
+ *  robustly again: the ladder's hard refits let clusters whose motions differ by
+ *  little collapse into one. On scans thinned to the training resolution the clusters
+ *  are lifted to every point and the associations taken under the ladder's motions.
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -131,6 +137,22 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
 JointResult
 estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
                const JointModel& model, const JointParameters& parameters = {});
+
+/** \brief Every point of \a points takes the target point nearest to where the motion
+ *  of its cluster puts it, with one batched query: the correspondence step of ICP under
+ *  per-cluster motions.
+ *  \param[in] source source scan [m, source frame]
+ *  \param[in] target_points kd-tree over the target scan [m, target frame]
+ *  \param[in] points source points to associate
+ *  \param[in] cluster per source point: its cluster, an index into \a motions for \a points
+ *  \param[in] motions per cluster: T_target_source
+ *  \param[in,out] source_match per source point: its target point; only \a points change
+ *  \throws std::invalid_argument for sizes that do not match, a point outside the scan
+ *  or without a cluster motion, or an empty target. */
+void
+associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
+                              const std::vector<int>& points, const std::vector<int>& cluster,
+                              const std::vector<Rigid2d>& motions, std::vector<int>& source_match);
 
 /** \brief A joint result as a Prediction for the metrics: the associations, the
  *  clusters with the outlier cluster's points given the cluster of their nearest
