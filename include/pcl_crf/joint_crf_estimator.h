@@ -74,8 +74,9 @@ public:
   void
   setGuessCovariance (const Eigen::Matrix3d& covariance) { guess_covariance_ = covariance; }
 
-  /** \brief The MAP associations of the last align(): (source index, target index,
-   *  squared distance after the static motion). Outliers have none. */
+  /** \brief The associations of the last align() (see joint::JointResult::source_match):
+   *  (source index, target index, squared distance after the static motion). Outliers
+   *  have none. */
   const pcl::Correspondences&
   getCorrespondences () const { return correspondences_; }
 
