@@ -23,14 +23,15 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::joint::inferLadder] " + what);
 }
 
-/** out(t) = max_s in(s) + P(s, t) for a column-major \a rows x \a cols P: a message
- *  along P's rows to its columns (plain loops: the vectors hold a handful of states,
- *  too few for Eigen's packet reductions to pay off). */
+/** out(t) = max_s in(s) + P(s, t) for a column-major \a rows x \a cols P whose
+ *  columns start \a stride apart: a message along P's rows to its columns (plain
+ *  loops: the vectors hold a handful of states, too few for Eigen's packet reductions
+ *  to pay off). */
 void
-maxToColumns (const double* in, const double* P, int rows, int cols, Small& out)
+maxToColumns (const double* in, const double* P, int rows, int cols, Eigen::Index stride, Small& out)
 {
   out.resize (cols);
-  for (int t = 0; t < cols; ++t, P += rows) {
+  for (int t = 0; t < cols; ++t, P += stride) {
     double best = P[0] + in[0];
     for (int s = 1; s < rows; ++s)
       best = std::max (best, P[s] + in[s]);
@@ -41,18 +42,19 @@ maxToColumns (const double* in, const double* P, int rows, int cols, Small& out)
 void
 maxToColumns (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
-  maxToColumns (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), out);
+  maxToColumns (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), P.outerStride (),
+                out);
 }
 
 /** out(s) = max_t in(t) + P(s, t): a message along P's columns to its rows. */
 void
-maxToRows (const double* in, const double* P, int rows, int cols, Small& out)
+maxToRows (const double* in, const double* P, int rows, int cols, Eigen::Index stride, Small& out)
 {
   out.resize (rows);
   for (int s = 0; s < rows; ++s)
     out (s) = P[s] + in[0];
   for (int t = 1; t < cols; ++t) {
-    P += rows;
+    P += stride;
     for (int s = 0; s < rows; ++s)
       out (s) = std::max (out (s), P[s] + in[t]);
   }
@@ -61,7 +63,8 @@ maxToRows (const double* in, const double* P, int rows, int cols, Small& out)
 void
 maxToRows (const Small& in, const Eigen::Ref<const Eigen::MatrixXd>& P, Small& out)
 {
-  maxToRows (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), out);
+  maxToRows (in.data (), P.data (), static_cast<int> (P.rows ()), static_cast<int> (P.cols ()), P.outerStride (),
+             out);
 }
 
 Eigen::Index
