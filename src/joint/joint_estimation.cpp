@@ -147,13 +147,13 @@ refineStaticMotion (const Eigen::Matrix2Xd& source, const matching::PreparedTarg
   result.T_source_target = T_static.inverse ();
 }
 
-/** The points of \a result with a match and a real cluster (not the outlier one). */
+/** The points with a match and a real cluster (not the outlier one). */
 std::vector<int>
-matchedClusteredPoints (const JointResult& result)
+matchedClusteredPoints (const std::vector<int>& source_match, const std::vector<int>& source_cluster)
 {
   std::vector<int> points;
-  for (int i = 0; i < static_cast<int> (result.source_match.size ()); ++i)
-    if (result.source_match[i] != kNoMatch && result.source_cluster[i] != kOutlierCluster)
+  for (int i = 0; i < static_cast<int> (source_match.size ()); ++i)
+    if (source_match[i] != kNoMatch && source_cluster[i] != kOutlierCluster)
       points.push_back (i);
   return points;
 }
@@ -219,35 +219,31 @@ estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   result.converged = round.converged;
   assemble (round, stage.pass.candidates, odometry, result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, result);
-  associateUnderClusterMotions (source, prepared.index.points, matchedClusteredPoints (result), result.source_cluster,
-                                result.cluster_motions, result.source_match);
-  ScanResolutionEstimate estimate{result, result};
+  associateUnderClusterMotions (source, prepared.index.points,
+                                matchedClusteredPoints (result.source_match, result.source_cluster),
+                                result.source_cluster, result.cluster_motions, result.source_match);
+  ScanResolutionEstimate estimate{result, std::move (result)};  // braced: the copy is made first
   clusterFinalAssociations (source, target, odometry, model, parameters, estimate.result);
   refineStaticMotion (source, prepared, stage.pass.candidates, guess, model.matcher.parameters.fit, estimate.result);
   return estimate;
 }
 
-/** The ladder's result on the thinned scans lifted to the full ones: every point takes
- *  its anchor's cluster and matched-or-outlier decision, and the matched points of real
- *  clusters their target point under their cluster's motion (as at scan resolution). */
-JointResult
-liftJointResult (JointResult coarse, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                 const matching::ThinnedPair& thinned)
+/** The ladder's associations on the thinned scans lifted to the full ones: every
+ *  point takes its anchor's cluster and matched-or-outlier decision, and the matched
+ *  points of real clusters their target point under their cluster's motion (as at
+ *  scan resolution). */
+std::vector<int>
+liftedMatches (const JointResult& ladder, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+               const matching::ThinnedPair& thinned)
 {
-  JointResult result = std::move (coarse);
-  result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
-  const std::vector<int> anchor_match = matching::liftLabels (thinned.anchors, result.source_match);
-  result.source_match.assign (anchor_match.size (), kNoMatch);
-  std::vector<int> matched;
-  for (int i = 0; i < static_cast<int> (anchor_match.size ()); ++i)
-    if (anchor_match[i] != kNoMatch && result.source_cluster[i] != kOutlierCluster)
-      matched.push_back (i);
+  const std::vector<int> cluster = matching::liftLabels (thinned.anchors, ladder.source_cluster);
+  const std::vector<int> matched =
+      matchedClusteredPoints (matching::liftLabels (thinned.anchors, ladder.source_match), cluster);
+  std::vector<int> matches (cluster.size (), kNoMatch);
   KnnIndex target_points;
   target_points.build (target);
-  associateUnderClusterMotions (source, target_points, matched, result.source_cluster, result.cluster_motions,
-                                result.source_match);
-  numberLargestFirst (result);
-  return result;
+  associateUnderClusterMotions (source, target_points, matched, cluster, ladder.cluster_motions, matches);
+  return matches;
 }
 
 }  // namespace
@@ -292,11 +288,11 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   if (!thinned.isThinned (source, target))
     return estimateAtScanResolution (source, target, odometry, model, parameters).result;
-  const ScanResolutionEstimate coarse =
+  ScanResolutionEstimate coarse =
       estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters);
-  JointResult result = coarse.result;  // the final clusters and motions, lifted below
-  result.source_match = liftJointResult (coarse.ladder, source, target, thinned).source_match;
-  result.source_cluster = matching::liftLabels (thinned.anchors, coarse.result.source_cluster);
+  JointResult result = std::move (coarse.result);  // the final clusters and motions, lifted below
+  result.source_match = liftedMatches (coarse.ladder, source, target, thinned);
+  result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
   numberLargestFirst (result);
   return result;
 }

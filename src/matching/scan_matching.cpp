@@ -49,6 +49,16 @@ checkModel (const CrfMatchingModel& model)
   validateParameters (model.parameters);
 }
 
+/** The model's and the source scan's checks, before any thinning (so that a NaN is
+ *  named as such, not as a bearing). */
+void
+checkModelAndSource (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source)
+{
+  checkModel (model);
+  if (!source.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+}
+
 /** The candidates and marginals of a full source point: those of its anchor, as full
  *  target indices, the MAP candidate replaced by the lifted \a match (a candidate
  *  that then repeats it gives it its probability and is dropped). */
@@ -128,9 +138,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModel (model);
-  if (!source.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  checkModelAndSource (model, source);
   MatchResult result;
   result.T_target_source = guess.T_target_source;
   if (source.cols () == 0)
@@ -170,9 +178,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModel (model);
-  if (!source.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  checkModelAndSource (model, source);
   ThinnedPair thinned;
   thinned.source = thinToSpacing (source, model.parameters.training_beam_spacing);
   thinned.target = target.thinned;
