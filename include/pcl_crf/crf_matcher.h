@@ -143,11 +143,18 @@ public:
   double
   getMaxObjectDisplacement () const { return model_.parameters.candidates.segments.max_displacement; }
 
-  /** \brief A moved point is explained when a target point lies this close [m]; default 0.15. */
+  /** \brief A moved point is explained when a target point lies at most this close [m]; default 0.15. */
   void
   setOverlapRadius (double metres) { model_.parameters.candidates.segments.overlap_radius = metres; }
   double
   getOverlapRadius () const { return model_.parameters.candidates.segments.overlap_radius; }
+
+  /** \brief The overlap radius in spacings of the point on its surface, between 3 range
+   *  noise σ and the overlap radius (0: the overlap radius everywhere) [spacings]; default 2. */
+  void
+  setOverlapSpacings (double spacings) { model_.parameters.candidates.segments.overlap_spacings = spacings; }
+  double
+  getOverlapSpacings () const { return model_.parameters.candidates.segments.overlap_spacings; }
 
   /** \brief Worst incidence angle λ on one surface, for the scan's breakpoints [rad];
    *  default 0.1745 (10°). */

@@ -12,19 +12,20 @@ namespace joint {
 namespace {
 
 /** Gives every point of a cluster that moves relative to the pass's motion (by more
- *  than the overlap radius at that point) its cluster's motion as hypothesis. */
+ *  than the overlap radius at that point, matching::overlapRadius ()) its cluster's
+ *  motion as hypothesis. */
 void
 clusterHypotheses (const LadderStart& start, const matching::SegmentMotionParameters& parameters,
                    const matching::ScanShape& source, matching::PassGeometry& pass)
 {
   const int clusters = static_cast<int> (start.motions.size ());
-  const double radius_squared = parameters.overlap_radius * parameters.overlap_radius;
+  const Eigen::Index n = source.points.cols ();
   for (int i = 0; i < static_cast<int> (start.cluster.size ()); ++i) {
     const int l = start.cluster[i];
     if (l >= clusters)
       continue;
     const Eigen::Vector2d h = start.motions[l] * source.points.col (i) - pass.source_current.col (i);
-    if (h.squaredNorm () <= radius_squared)
+    if (h.norm () <= matching::overlapRadius (parameters, matching::pointSpacing (source.points, i, 0, n)))
       continue;
     pass.segment_motions.translation.col (i) = h;
     pass.segment_motions.has_hypothesis[i] = true;

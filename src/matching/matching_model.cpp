@@ -48,6 +48,8 @@ validateParameters (const MatchingParameters& p)
   require (s.min_segment_points >= 1, "min_segment_points must be >= 1");
   require (s.max_displacement >= 0.0 && std::isfinite (s.max_displacement), "max_displacement must be >= 0 m");
   require (s.overlap_radius > 0.0 && std::isfinite (s.overlap_radius), "overlap_radius must be > 0 m");
+  require (s.overlap_spacings >= 0.0 && std::isfinite (s.overlap_spacings),
+           "overlap_spacings must be >= 0 point spacings (0: overlap_radius everywhere)");
   require (p.boosting_rounds >= 1, "boosting_rounds must be >= 1");
   require (p.prior_sigma > 0.0, "prior_sigma must be > 0");
   require (p.residual_scale > 0.0 && std::isfinite (p.residual_scale), "residual_scale must be a positive distance [m]");

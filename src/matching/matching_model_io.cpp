@@ -42,6 +42,8 @@ readParameters (ModelReader& reader)
   segments.min_segment_points = reader.integer ("segment_min_points", 1, 100000);
   segments.max_displacement = reader.real ("segment_max_displacement", 0.0);
   segments.overlap_radius = reader.real ("segment_overlap_radius", 0.0);
+  // absent from models written before it: the metric radius everywhere, as they were trained
+  segments.overlap_spacings = reader.optionalReal ("segment_overlap_spacings", 0.0, 0.0, 1e6);
   p.boosting_rounds = reader.integer ("boosting_rounds", 1, 100000);
   p.prior_sigma = reader.real ("prior_sigma", std::numeric_limits<double>::min ());
   p.residual_scale = reader.real ("residual_scale", std::numeric_limits<double>::min ());
@@ -110,6 +112,7 @@ writeModel (const CrfMatchingModel& model, std::ostream& os)
        << "segment_min_points " << p.candidates.segments.min_segment_points << '\n'
        << "segment_max_displacement " << number (p.candidates.segments.max_displacement) << '\n'
        << "segment_overlap_radius " << number (p.candidates.segments.overlap_radius) << '\n'
+       << "segment_overlap_spacings " << number (p.candidates.segments.overlap_spacings) << '\n'
        << "boosting_rounds " << p.boosting_rounds << '\n'
        << "prior_sigma " << number (p.prior_sigma) << '\n'
        << "residual_scale " << number (p.residual_scale) << '\n'

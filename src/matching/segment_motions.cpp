@@ -96,7 +96,45 @@ judgedSamples (const std::vector<int>& samples, const Eigen::Matrix2Xd& source_c
   return judged;
 }
 
+/** The squared overlap radius of every scoring sample, in query column order. */
+Eigen::VectorXd
+sampleRadiiSquared (const std::vector<SegmentQuery>& queries, const Eigen::Matrix2Xd& source_scan,
+                    const SegmentMotionParameters& parameters)
+{
+  std::size_t count = 0;
+  for (const SegmentQuery& query : queries)
+    count += query.samples.size ();
+  Eigen::VectorXd radii (static_cast<Eigen::Index> (count));
+  Eigen::Index k = 0;
+  for (const SegmentQuery& query : queries)
+    for (int i : query.samples) {
+      const double spacing = pointSpacing (source_scan, i, query.segment.begin, query.segment.end);
+      radii (k++) = std::pow (overlapRadius (parameters, spacing), 2);
+    }
+  return radii;
+}
+
 }  // namespace
+
+double
+overlapRadius (const SegmentMotionParameters& parameters, double point_spacing)
+{
+  if (parameters.overlap_spacings <= 0.0)
+    return parameters.overlap_radius;
+  const double resolution = std::max (3.0 * parameters.range_noise, parameters.overlap_spacings * point_spacing);
+  return std::min (parameters.overlap_radius, resolution);
+}
+
+double
+pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end)
+{
+  double spacing = 0.0;
+  if (i > begin)
+    spacing = (points.col (i) - points.col (i - 1)).norm ();
+  if (i + 1 < end)
+    spacing = std::max (spacing, (points.col (i + 1) - points.col (i)).norm ());
+  return spacing;
+}
 
 SegmentMotions
 segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matrix2Xd& source_current,
@@ -134,14 +172,17 @@ segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matri
         moved.col (column++) = source_current.col (i) + h;
   }
   const KnnIndex::Result nearest = target_index.search (moved, 1);  // one batched query scores everything
-  const double radius_squared = parameters.overlap_radius * parameters.overlap_radius;
+  const Eigen::VectorXd radii_squared = sampleRadiiSquared (queries, source_scan, parameters);
+  Eigen::Index first_sample = 0;  // the query's first sample in radii_squared
   for (const SegmentQuery& query : queries) {
     int best = 0, best_score = -1, current_score = 0;
     Eigen::Index column = query.first_column;
+    const auto radii = radii_squared.segment (first_sample, static_cast<Eigen::Index> (query.samples.size ()));
+    first_sample += radii.size ();
     for (std::size_t h = 0; h < query.hypotheses.size (); ++h) {
       int score = 0;  // explained judged samples; the current motion (h = 0) wins ties
       for (std::size_t k = 0; k < query.samples.size (); ++k, ++column)
-        score += query.judged[k] && nearest.squared_distances (0, column) <= radius_squared ? 1 : 0;
+        score += query.judged[k] && nearest.squared_distances (0, column) <= radii (static_cast<Eigen::Index> (k)) ? 1 : 0;
       if (h == 0)
         current_score = score;
       if (score > best_score) {

@@ -238,9 +238,12 @@ TYPED_TEST (CrfMatcherTest, SettersAndClone)
   this->matcher_.setGuessNeighbours (3);
   this->matcher_.setSegmentNeighbours (1);
   this->matcher_.setMaxObjectDisplacement (4.0);
+  EXPECT_DOUBLE_EQ (this->matcher_.getOverlapSpacings (), defaultModel ().parameters.candidates.segments.overlap_spacings);
+  this->matcher_.setOverlapSpacings (3.0);
   EXPECT_EQ (this->matcher_.getGuessNeighbours (), 3);
   EXPECT_EQ (this->matcher_.getSegmentNeighbours (), 1);
   EXPECT_DOUBLE_EQ (this->matcher_.getMaxObjectDisplacement (), 4.0);
+  EXPECT_DOUBLE_EQ (this->matcher_.getOverlapSpacings (), 3.0);
   const Eigen::Matrix4f guess = toMatrix4f (makeRigid2d (0.1, 0.2, 0.3));
   this->matcher_.setInitialGuess (guess);
   EXPECT_TRUE (this->matcher_.getInitialGuess ().isApprox (guess, 1e-6f));

@@ -156,7 +156,8 @@ TEST (MatchingShapeNeighbours, ReusedNeighboursEqualAFreshSearch)
   EXPECT_THROW (m::updateShapeNeighbours (earlier, before, two, k), std::invalid_argument);  // another target
 }
 
-/** A wall at y = 8 and a 4 m x 1.8 m box (a car) at y = 3 that drives 3 m along x. */
+/** A wall at y = 8 and a 4 m x 1.8 m box (a car) at y = 3 that drives 3 m along x;
+ *  every length times \a scale when one is given. */
 struct MovingBoxScene
 {
   Eigen::Matrix2Xd source, target;
@@ -165,13 +166,13 @@ struct MovingBoxScene
 };
 
 MovingBoxScene
-movingBoxScene ()
+movingBoxScene (double scale = 1.0)
 {
   std::vector<Eigen::Vector2d> wall, box;
   for (double x = -12.0; x <= 12.0; x += 0.2)
-    wall.emplace_back (x, 8.0);
+    wall.emplace_back (scale * x, scale * 8.0);
   for (double x = 0.0; x <= 4.0 + 1e-9; x += 0.1)  // the box's near side, seen from the origin
-    box.emplace_back (x, 3.0);
+    box.emplace_back (scale * x, scale * 3.0);
   MovingBoxScene scene;
   // In beam order (bearing from -x to +x): wall right of the box, box, wall left of it.
   auto bearing = [] (const Eigen::Vector2d& p) { return std::atan2 (p.y (), p.x ()); };
@@ -203,7 +204,7 @@ movingBoxScene ()
   };
   assemble (0.0, scene.source, &scene.box_begin, &scene.box_end);
   int target_box_begin = 0, target_box_end = 0;
-  assemble (3.0, scene.target, &target_box_begin, &target_box_end);
+  assemble (scale * 3.0, scene.target, &target_box_begin, &target_box_end);
   // Box point k (from its far end) keeps its place on the box.
   scene.source_match.assign (scene.source.cols (), pcl_crf::kNoMatch);
   for (int k = 0; k < scene.box_end - scene.box_begin; ++k)
@@ -250,6 +251,47 @@ TEST (MatchingSegments, HypothesisFollowsAMovingBox)
   parameters.shape_neighbours = 0;
   const m::PassGeometry without = m::preparePass (source, target, Rigid2d::Identity (), Rigid2d::Identity (), parameters);
   EXPECT_EQ (without.candidates.find (scene.box_begin + 5, scene.source_match[scene.box_begin + 5]), -1);
+}
+
+TEST (MatchingSegments, OverlapRadiusIsTwoPointSpacingsBetweenNoiseAndTheMetricRadius)
+{
+  Eigen::Matrix2Xd points (2, 4);
+  points << 0.0, 0.1, 0.3, 1.3,  //
+      0.0, 0.0, 0.0, 0.0;
+  EXPECT_DOUBLE_EQ (m::pointSpacing (points, 1, 0, 4), 0.2);  // the larger neighbour distance
+  EXPECT_DOUBLE_EQ (m::pointSpacing (points, 0, 0, 4), 0.1);  // one neighbour at the ends
+  EXPECT_DOUBLE_EQ (m::pointSpacing (points, 2, 0, 3), 0.2);  // point 3 is on another segment
+  EXPECT_DOUBLE_EQ (m::pointSpacing (points, 2, 2, 3), 0.0);  // a lone point
+  m::SegmentMotionParameters parameters;                       // 2 spacings, σ 0.01 m, at most 0.15 m
+  EXPECT_DOUBLE_EQ (m::overlapRadius (parameters, 0.05), 0.1);
+  EXPECT_DOUBLE_EQ (m::overlapRadius (parameters, 0.005), 0.03);  // 3 σ: two ranges' noise
+  EXPECT_DOUBLE_EQ (m::overlapRadius (parameters, 0.5), 0.15);    // occlusion gaps: the metric radius
+  parameters.overlap_spacings = 0.0;                              // models written before the setting
+  EXPECT_DOUBLE_EQ (m::overlapRadius (parameters, 0.005), 0.15);
+}
+
+TEST (MatchingSegments, HypothesisFollowsAMovingBoxAtAnyScale)
+{
+  // The box scene at 1/50 scale (a 1/10-scale car's size): an 8 cm box, 2 mm between
+  // points, driving 6 cm. A metric 0.15 m radius calls all of it explained by the
+  // static motion; two point spacings (at least 3 cm of range noise) do not.
+  const double scale = 0.02;
+  const MovingBoxScene scene = movingBoxScene (scale);
+  m::CandidateParameters parameters;
+  const m::PreparedTarget target = m::prepareTarget (scene.target, parameters);
+  const m::ScanShape source = m::describeScan (scene.source);
+  const m::PassGeometry pass = m::preparePass (source, target, Rigid2d::Identity (), Rigid2d::Identity (), parameters);
+  for (int i = scene.box_begin; i < scene.box_end; ++i) {
+    ASSERT_TRUE (pass.segment_motions.has_hypothesis[i]) << "box point " << i;
+    EXPECT_NEAR (pass.segment_motions.translation (0, i), 3.0 * scale, 1e-9);
+    EXPECT_NEAR (pass.segment_motions.translation (1, i), 0.0, 1e-9);
+    EXPECT_NE (pass.candidates.find (i, scene.source_match[i]), -1) << "box point " << i;
+  }
+  EXPECT_FALSE (pass.segment_motions.has_hypothesis[0]);  // the wall does not move
+  parameters.segments.overlap_spacings = 0.0;
+  const m::PassGeometry metric = m::preparePass (source, target, Rigid2d::Identity (), Rigid2d::Identity (), parameters);
+  EXPECT_DOUBLE_EQ (metric.segment_motions.current_support (scene.box_begin), 1.0);
+  EXPECT_FALSE (metric.segment_motions.has_hypothesis[scene.box_begin]);
 }
 
 TEST (MatchingBoosting, VectorisedMarginsEqualTheClassifier)

@@ -265,6 +265,20 @@ TEST_F (MatchingModelTest, RecordsTheBeamSpacingItWasTrainedAt)
   EXPECT_NE (negative.find ("'training_beam_spacing'"), std::string::npos) << negative;
 }
 
+TEST_F (MatchingModelTest, RecordsTheOverlapRadiusInPointSpacings)
+{
+  EXPECT_EQ (model_->parameters.candidates.segments.overlap_spacings, 2.0);
+  std::stringstream text;
+  m::writeModel (*model_, text);
+  EXPECT_EQ (m::readModel (text).parameters.candidates.segments.overlap_spacings, 2.0);
+  // Files written before the field used the metric radius everywhere, and still do.
+  std::istringstream older (editedModel (*model_, "segment_overlap_spacings 2\n", ""));
+  EXPECT_EQ (m::readModel (older).parameters.candidates.segments.overlap_spacings, 0.0);
+  const std::string negative =
+      readError (editedModel (*model_, "segment_overlap_spacings 2\n", "segment_overlap_spacings -1\n"));
+  EXPECT_NE (negative.find ("'segment_overlap_spacings'"), std::string::npos) << negative;
+}
+
 TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)
 {
   // The model learned from 0.5° scans; on 0.25° scans it matches every other beam and

@@ -30,10 +30,37 @@ struct SegmentMotionParameters
   /** largest displacement of an object between the scans beyond the static
    *  motion, about top speed × scan interval [m]; default 6. */
   double max_displacement = 6.0;
-  /** a moved source point is explained when a target point lies this close [m];
-   *  default 0.15 (about two beam spacings at 10 m). */
+  /** the most a moved source point may lie from a target point and still be
+   *  explained [m]; default 0.15 (about two beam spacings at 10 m). */
   double overlap_radius = 0.15;
+  /** the overlap radius in point spacings: a moved source point is explained when a
+   *  target point lies within this many times the point's spacing on its surface
+   *  (the larger distance to its neighbours on its segment), at least 3 range_noise
+   *  and at most overlap_radius (see overlapRadius ()). A point on the same surface
+   *  has a target point within about one spacing whatever the scene's scale, so the
+   *  radius follows the sensor's resolution (0.15 m reaches 5–10 beams on a
+   *  1/10-scale car 0.5 m away). 0: overlap_radius everywhere, as models written
+   *  before this setting [spacings]; default 2. */
+  double overlap_spacings = 2.0;
 };
+
+/** \brief The radius within which a target point explains a moved source point
+ *  whose neighbours on its surface lie up to \a point_spacing away:
+ *  min(overlap_radius, max(3 range_noise, overlap_spacings · point_spacing)), or
+ *  overlap_radius when overlap_spacings is 0 [m].
+ *
+ *  \code
+ *  const double spacing = pcl_crf::matching::pointSpacing (source, i, 0, source.cols ());
+ *  const double radius = pcl_crf::matching::overlapRadius (parameters, spacing);
+ *  \endcode
+ */
+double
+overlapRadius (const SegmentMotionParameters& parameters, double point_spacing);
+
+/** \brief The larger distance from point i to its neighbours i − 1 and i + 1 within
+ *  the run [begin, end) of \a points (0 when it has none there) [m]. */
+double
+pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end);
 
 /** \brief Per source point: its segment's motion hypothesis and how well it and
  *  the current motion explain the segment.
@@ -65,7 +92,7 @@ struct SegmentMotions
  *  end points with the same end of a target segment within max_displacement
  *  (Borges & Aldon's segments, matched by their ends); each is scored by the
  *  fraction of (up to 10 evenly spread) segment points with a target point within
- *  overlap_radius, and the best one is kept when it explains more than the
+ *  their overlap radius (overlapRadius () of their spacing on the segment), and the best one is kept when it explains more than the
  *  current motion does. All scores come from one batched kNN query.
  *
  *  \param[in] source_scan source points in the source frame (for the breakpoints) [m]
