@@ -53,6 +53,8 @@ struct SegmentQuery
   Eigen::Index first_column = 0;
   /** per sample: whether the target sensor could see it under the current motion. */
   std::vector<bool> judged;
+  /** per sample: its squared overlap radius (overlapRadius () of its spacing on the segment). */
+  std::vector<double> radii_squared;
 };
 
 /** The bearing interval [min, max] the target scan covers (its field of view). */
@@ -96,21 +98,14 @@ judgedSamples (const std::vector<int>& samples, const Eigen::Matrix2Xd& source_c
   return judged;
 }
 
-/** The squared overlap radius of every scoring sample, in query column order. */
-Eigen::VectorXd
-sampleRadiiSquared (const std::vector<SegmentQuery>& queries, const Eigen::Matrix2Xd& source_scan,
+/** The squared overlap radius of every sample of a segment. */
+std::vector<double>
+sampleRadiiSquared (const std::vector<int>& samples, const ScanSegment& segment, const Eigen::Matrix2Xd& source_scan,
                     const SegmentMotionParameters& parameters)
 {
-  std::size_t count = 0;
-  for (const SegmentQuery& query : queries)
-    count += query.samples.size ();
-  Eigen::VectorXd radii (static_cast<Eigen::Index> (count));
-  Eigen::Index k = 0;
-  for (const SegmentQuery& query : queries)
-    for (int i : query.samples) {
-      const double spacing = pointSpacing (source_scan, i, query.segment.begin, query.segment.end);
-      radii (k++) = std::pow (overlapRadius (parameters, spacing), 2);
-    }
+  std::vector<double> radii (samples.size ());
+  for (std::size_t k = 0; k < samples.size (); ++k)
+    radii[k] = std::pow (overlapRadius (parameters, pointSpacing (source_scan, samples[k], segment.begin, segment.end)), 2);
   return radii;
 }
 
@@ -156,8 +151,9 @@ segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matri
        segmentScan (source_scan, parameters.breakpoint_angle, parameters.range_noise)) {
     if (segment.size () < parameters.min_segment_points)
       continue;
-    SegmentQuery query{segment, {}, scoringSamples (segment), columns, {}};
+    SegmentQuery query{segment, {}, scoringSamples (segment), columns, {}, {}};
     query.judged = judgedSamples (query.samples, source_current, view);
+    query.radii_squared = sampleRadiiSquared (query.samples, segment, source_scan, parameters);
     endAlignments (source_current.col (segment.begin), source_current.col (segment.end - 1),
                    objectEnds (source_scan, segment), target_scan, target_segments, parameters, query.hypotheses);
 
@@ -172,17 +168,13 @@ segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matri
         moved.col (column++) = source_current.col (i) + h;
   }
   const KnnIndex::Result nearest = target_index.search (moved, 1);  // one batched query scores everything
-  const Eigen::VectorXd radii_squared = sampleRadiiSquared (queries, source_scan, parameters);
-  Eigen::Index first_sample = 0;  // the query's first sample in radii_squared
   for (const SegmentQuery& query : queries) {
     int best = 0, best_score = -1, current_score = 0;
     Eigen::Index column = query.first_column;
-    const auto radii = radii_squared.segment (first_sample, static_cast<Eigen::Index> (query.samples.size ()));
-    first_sample += radii.size ();
     for (std::size_t h = 0; h < query.hypotheses.size (); ++h) {
       int score = 0;  // explained judged samples; the current motion (h = 0) wins ties
       for (std::size_t k = 0; k < query.samples.size (); ++k, ++column)
-        score += query.judged[k] && nearest.squared_distances (0, column) <= radii (static_cast<Eigen::Index> (k)) ? 1 : 0;
+        score += query.judged[k] && nearest.squared_distances (0, column) <= query.radii_squared[k] ? 1 : 0;
       if (h == 0)
         current_score = score;
       if (score > best_score) {

@@ -92,8 +92,8 @@ struct SegmentMotions
  *  end points with the same end of a target segment within max_displacement
  *  (Borges & Aldon's segments, matched by their ends); each is scored by the
  *  fraction of (up to 10 evenly spread) segment points with a target point within
- *  their overlap radius (overlapRadius () of their spacing on the segment), and the best one is kept when it explains more than the
- *  current motion does. All scores come from one batched kNN query.
+ *  their overlap radius (overlapRadius () of their spacing on the segment), and the
+ *  best one is kept when it explains more than the current motion does. All scores come from one batched kNN query.
  *
  *  \param[in] source_scan source points in the source frame (for the breakpoints) [m]
  *  \param[in] source_current the same points moved by the current motion estimate [m]
