@@ -55,6 +55,18 @@ TEST_F (EvalTool, PrintsTableForIcp)
   EXPECT_NE (run.output.find ("pairs: icp=1"), std::string::npos) << run.output;
 }
 
+TEST_F (EvalTool, PrintsTheSmallObjectVCeilingWithoutRunningAMethod)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const auto run = runTool ("pcl_crf_eval", (dir_ / "set").string () + " --v-ceiling --method joint -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;  // joint would need --models: it does not run
+  EXPECT_NE (run.output.find ("pairs with V >= 0.95 (of 1)"), std::string::npos) << run.output;
+  // one static world: every oracle reaches V = 1
+  EXPECT_NE (run.output.find ("1      1.000   1\n"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("20     1.000   1\n"), std::string::npos) << run.output;
+  EXPECT_EQ (run.output.find ("association_accuracy"), std::string::npos) << run.output;
+}
+
 TEST_F (EvalTool, WritesCsvJsonAndPredictions)
 {
   PCL_CRF_SKIP_WITHOUT_APPS ();

@@ -13,4 +13,5 @@
 #include <pcl_crf/metrics/pair_scores.h>
 #include <pcl_crf/metrics/summary.h>
 #include <pcl_crf/metrics/v_measure.h>
+#include <pcl_crf/metrics/v_measure_ceiling.h>
 #include <pcl_crf/metrics/validate_prediction.h>
