@@ -286,14 +286,19 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     fail ("the scans hold NaN or infinite points");
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
+  JointResult result;
   if (!thinned.isThinned (source, target))
-    return estimateAtScanResolution (source, target, odometry, model, parameters).result;
-  ScanResolutionEstimate coarse =
-      estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters);
-  JointResult result = std::move (coarse.result);  // the final clusters and motions, lifted below
-  result.source_match = liftedMatches (coarse.ladder, source, target, thinned);
-  result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
-  numberLargestFirst (result);
+    result = estimateAtScanResolution (source, target, odometry, model, parameters).result;
+  else {
+    ScanResolutionEstimate coarse =
+        estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters);
+    result = std::move (coarse.result);  // the final clusters and motions, lifted below
+    result.source_match = liftedMatches (coarse.ladder, source, target, thinned);
+    result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
+    numberLargestFirst (result);
+  }
+  if (parameters.remove_clusters_the_static_world_explains)
+    removeClustersTheStaticWorldExplains (target, model.matcher.parameters.candidates.segments, result);
   return result;
 }
 

@@ -125,6 +125,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  robustly again: the ladder's hard refits let clusters whose motions differ by
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
+ *  Last, clusters whose matches only repeat target points the static world explains
+ *  are removed (removeClustersTheStaticWorldExplains ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -153,6 +155,24 @@ void
 associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
                               const std::vector<int>& points, const std::vector<int>& cluster,
                               const std::vector<Rigid2d>& motions, std::vector<int>& source_match);
+
+/** \brief Removes every cluster but the static world whose matched points all landed on
+ *  target points the static world already explains: each lies within the overlap radius
+ *  (matching::overlapRadius () of its spacing on the target scan) of a target point a
+ *  static-world point is matched to. Such a cluster explains no target point of its own
+ *  (typically a stretch of façade that left the view, matched to the façade further on
+ *  under a motion that slides it along itself), so it is no evidence of a mover: its
+ *  points become outliers (kNoMatch, kOutlierCluster). The other clusters keep their
+ *  order; clusters without a matched point, or a result without a static world, stay.
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the overlap radius (the matcher's segment parameters)
+ *  \param[in,out] result a joint result whose matches index \a target
+ *  \return the number of clusters removed
+ *  \throws std::invalid_argument when the result's sizes disagree or a match is not a
+ *  target point. */
+int
+removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief A joint result as a Prediction for the metrics: the associations, the
  *  clusters with the outlier cluster's points given the cluster of their nearest

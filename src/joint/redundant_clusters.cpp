@@ -1,0 +1,141 @@
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/segment_motions.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+[[noreturn]] void
+fail (const std::string& what)
+{
+  throw std::invalid_argument ("[pcl_crf::joint::removeClustersTheStaticWorldExplains] " + what);
+}
+
+void
+checkResult (const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  const std::size_t n = result.source_cluster.size ();
+  if (result.source_match.size () != n)
+    fail (std::to_string (n) + " clusters but " + std::to_string (result.source_match.size ()) +
+          " matches: give one of each per source point");
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  if (result.static_cluster >= clusters)
+    fail ("the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
+          std::to_string (clusters) + " clusters");
+  for (std::size_t i = 0; i < n; ++i) {
+    const int l = result.source_cluster[i], j = result.source_match[i];
+    if (l != kOutlierCluster && (l < 0 || l >= clusters))
+      fail ("point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " + std::to_string (clusters));
+    if (j != kNoMatch && (j < 0 || j >= target.cols ()))
+      fail ("point " + std::to_string (i) + " is matched to target point " + std::to_string (j) + " of " +
+            std::to_string (target.cols ()));
+  }
+}
+
+/** The target points the static world's points are matched to, as a kd-tree. */
+KnnIndex
+staticWorldTargets (const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  std::vector<int> claimed;
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
+    if (result.source_cluster[i] == result.static_cluster && result.source_match[i] != kNoMatch)
+      claimed.push_back (result.source_match[i]);
+  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (claimed.size ()));
+  for (std::size_t c = 0; c < claimed.size (); ++c)
+    points.col (static_cast<Eigen::Index> (c)) = target.col (claimed[c]);
+  KnnIndex index;
+  index.build (points);
+  return index;
+}
+
+/** Per cluster: true when it has matched points and every one of their target points
+ *  lies within its overlap radius of a target point in \a claimed. */
+std::vector<bool>
+explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotionParameters& parameters,
+                   const KnnIndex& claimed, const JointResult& result)
+{
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  std::vector<int> matched (static_cast<std::size_t> (clusters), 0), unexplained (matched);
+  std::vector<int> points;
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
+    if (result.source_cluster[i] != kOutlierCluster && result.source_cluster[i] != result.static_cluster &&
+        result.source_match[i] != kNoMatch)
+      points.push_back (static_cast<int> (i));
+  std::vector<bool> explained (static_cast<std::size_t> (clusters), false);
+  if (points.empty ())
+    return explained;
+  Eigen::Matrix2Xd landed (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k)
+    landed.col (static_cast<Eigen::Index> (k)) = target.col (result.source_match[points[k]]);
+  const KnnIndex::Result nearest = claimed.search (landed, 1);  // one batched query
+  for (std::size_t k = 0; k < points.size (); ++k) {
+    const int l = result.source_cluster[points[k]];
+    const int j = result.source_match[points[k]];
+    const double radius = matching::overlapRadius (parameters, matching::pointSpacing (target, j, 0, target.cols ()));
+    ++matched[l];
+    if (nearest.squared_distances (0, static_cast<Eigen::Index> (k)) > radius * radius)
+      ++unexplained[l];
+  }
+  for (int l = 0; l < clusters; ++l)
+    explained[l] = matched[l] > 0 && unexplained[l] == 0;
+  return explained;
+}
+
+/** Removes the clusters marked in \a removed: their points become outliers, the others
+ *  are renumbered in their order. */
+void
+removeClusters (const std::vector<bool>& removed, JointResult& result)
+{
+  std::vector<int> rank (removed.size (), kOutlierCluster);
+  std::vector<Rigid2d> motions;
+  for (std::size_t l = 0; l < removed.size (); ++l)
+    if (!removed[l]) {
+      rank[l] = static_cast<int> (motions.size ());
+      motions.push_back (result.cluster_motions[l]);
+    }
+  result.cluster_motions = std::move (motions);
+  result.cluster_sizes.assign (result.cluster_motions.size (), 0);
+  result.outliers.clear ();
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    int& l = result.source_cluster[i];
+    if (l != kOutlierCluster && removed[l]) {
+      l = kOutlierCluster;
+      result.source_match[i] = kNoMatch;
+    }
+    else if (l != kOutlierCluster)
+      l = rank[l];
+    if (l == kOutlierCluster)
+      result.outliers.push_back (static_cast<int> (i));
+    else
+      ++result.cluster_sizes[l];
+  }
+  result.static_cluster = rank[result.static_cluster];
+}
+
+}  // namespace
+
+int
+removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  checkResult (target, result);
+  if (result.static_cluster < 0)
+    return 0;
+  const KnnIndex claimed = staticWorldTargets (target, result);
+  if (claimed.size () == 0)
+    return 0;
+  const std::vector<bool> removed = explainedClusters (target, parameters, claimed, result);
+  int count = 0;
+  for (bool r : removed)
+    count += r ? 1 : 0;
+  if (count > 0)
+    removeClusters (removed, result);
+  return count;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf

@@ -1,0 +1,122 @@
+#include <pcl_crf/joint/joint_estimation.h>
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+using pcl_crf::kNoMatch;
+using pcl_crf::kOutlierCluster;
+using pcl_crf::joint::JointResult;
+using pcl_crf::joint::removeClustersTheStaticWorldExplains;
+
+/** A wall of 101 target points 0.1 m apart along y = 5 m, x = 0 … 10 m. */
+Eigen::Matrix2Xd
+wall ()
+{
+  Eigen::Matrix2Xd target (2, 101);
+  for (int j = 0; j < 101; ++j)
+    target.col (j) = Eigen::Vector2d (0.1 * j, 5.0);
+  return target;
+}
+
+/** Appends \a count source points of cluster \a cluster matched to target points
+ *  \a first, first + 1, … */
+void
+addPoints (JointResult& result, int cluster, int first, int count)
+{
+  for (int k = 0; k < count; ++k) {
+    result.source_cluster.push_back (cluster);
+    result.source_match.push_back (first + k);
+  }
+}
+
+/** The static world (cluster 0) matched to target points 0–79; cluster 1 to 10–19 (all
+ *  of them the static world's); cluster 2 to 90–99 (none); cluster 3 to 78–81 (two the
+ *  static world's, 80 and 81 within 0.15 m of 79 but not 81: 0.2 m away); one outlier. */
+JointResult
+wallResult ()
+{
+  JointResult result;
+  result.cluster_motions.assign (4, pcl_crf::Rigid2d::Identity ());
+  result.static_cluster = 0;
+  addPoints (result, 0, 0, 80);
+  addPoints (result, 1, 10, 10);
+  addPoints (result, 2, 90, 10);
+  addPoints (result, 3, 78, 4);
+  result.source_cluster.push_back (kOutlierCluster);
+  result.source_match.push_back (kNoMatch);
+  result.cluster_sizes = {80, 10, 10, 4};
+  return result;
+}
+
+TEST (JointRedundantClusters, AClusterOnTargetPointsTheStaticWorldExplainsBecomesOutliers)
+{
+  // Spacing 0.1 m: the overlap radius is min(0.15, max(0.03, 2 · 0.1)) = 0.15 m.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = wallResult ();
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, result), 1);
+  ASSERT_EQ (result.cluster_motions.size (), 3u);
+  EXPECT_EQ (result.static_cluster, 0);
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{80, 10, 4}));
+  for (int i = 80; i < 90; ++i) {  // cluster 1's points
+    EXPECT_EQ (result.source_cluster[i], kOutlierCluster);
+    EXPECT_EQ (result.source_match[i], kNoMatch);
+  }
+  EXPECT_EQ (result.source_cluster[90], 1);  // cluster 2, renumbered
+  EXPECT_EQ (result.source_match[90], 90);
+  EXPECT_EQ (result.source_cluster[100], 2);  // cluster 3, renumbered
+  ASSERT_EQ (result.outliers.size (), 11u);
+  EXPECT_EQ (result.outliers.front (), 80);
+  EXPECT_EQ (result.outliers.back (), 104);
+  // Nothing left to remove.
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, result), 0);
+}
+
+TEST (JointRedundantClusters, TheRadiusFollowsTheTargetSpacing)
+{
+  // With a 0.25 m metric radius, target point 81 (0.2 m from the static world's 79) is
+  // explained too, so cluster 3 goes as well; cluster 2 (1.1 m away) stays.
+  pcl_crf::matching::SegmentMotionParameters parameters;
+  parameters.overlap_spacings = 0.0;
+  parameters.overlap_radius = 0.25;
+  JointResult result = wallResult ();
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, result), 2);
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{80, 10}));
+  EXPECT_EQ (result.source_match[90], 90);
+}
+
+TEST (JointRedundantClusters, LeavesResultsWithoutAStaticWorldOrMatchesAlone)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult no_static = wallResult ();
+  no_static.static_cluster = -1;
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, no_static), 0);
+  EXPECT_EQ (no_static.cluster_motions.size (), 4u);
+
+  JointResult unmatched = wallResult ();  // cluster 1 loses its matches: no evidence either way
+  for (int i = 80; i < 90; ++i)
+    unmatched.source_match[i] = kNoMatch;
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, unmatched), 0);
+}
+
+TEST (JointRedundantClusters, RejectsInconsistentResults)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult sizes = wallResult ();
+  sizes.source_match.pop_back ();
+  EXPECT_THROW (removeClustersTheStaticWorldExplains (wall (), parameters, sizes), std::invalid_argument);
+  JointResult match = wallResult ();
+  match.source_match[3] = 101;
+  EXPECT_THROW (removeClustersTheStaticWorldExplains (wall (), parameters, match), std::invalid_argument);
+  JointResult cluster = wallResult ();
+  cluster.source_cluster[3] = 4;
+  EXPECT_THROW (removeClustersTheStaticWorldExplains (wall (), parameters, cluster), std::invalid_argument);
+  JointResult static_cluster = wallResult ();
+  static_cluster.static_cluster = 4;
+  EXPECT_THROW (removeClustersTheStaticWorldExplains (wall (), parameters, static_cluster), std::invalid_argument);
+}
+
+}  // namespace
