@@ -179,16 +179,23 @@ savePredictions (const EvalArguments& args, const std::vector<pcl_crf::ScanPair>
                              (std::filesystem::path (args.save_predictions) / evaluation.method / pairs[k].name).string ());
 }
 
+/** Where the report goes: --output FILE (opened into \a file), else stdout. */
+std::ostream&
+reportStream (const EvalArguments& args, std::ofstream& file)
+{
+  if (args.output.empty ())
+    return std::cout;
+  file.open (args.output);
+  if (!file)
+    throw std::runtime_error ("cannot write " + args.output);
+  return file;
+}
+
 void
 writeReport (const EvalArguments& args, const std::vector<pcl_crf::MethodEvaluation>& evaluations)
 {
   std::ofstream file;
-  if (!args.output.empty ()) {
-    file.open (args.output);
-    if (!file)
-      throw std::runtime_error ("cannot write " + args.output);
-  }
-  std::ostream& out = args.output.empty () ? std::cout : file;
+  std::ostream& out = reportStream (args, file);
   if (args.format == "csv")
     pcl_crf::writeEvaluationCsv (out, evaluations);
   else if (args.format == "json")
@@ -204,12 +211,7 @@ writeVMeasureCeilings (const EvalArguments& args, const std::vector<pcl_crf::Sca
   constexpr double kReached = 0.95;
   const auto ceilings = pcl_crf::vMeasureCeilings (pairs, {1, 2, 3, 5, 9, 20}, kReached);
   std::ofstream file;
-  if (!args.output.empty ()) {
-    file.open (args.output);
-    if (!file)
-      throw std::runtime_error ("cannot write " + args.output);
-  }
-  std::ostream& out = args.output.empty () ? std::cout : file;
+  std::ostream& out = reportStream (args, file);
   out << "oracle: every object of >= N source points clustered exactly, smaller ones in the static world\n"
       << "N     mean V   pairs with V >= " << kReached << " (of " << pairs.size () << ")\n";
   char line[64];
