@@ -258,18 +258,16 @@ run (const EvalArguments& args)
     print_info ("Loaded %zu pairs from %s in %g ms\n", pairs.size (), args.dataset.c_str (), timer.toc ());
   pcl_crf::ScoreOptions options;
   options.match_tolerance = args.tolerance;
-  if (args.v_ceiling) {
-    if (args.max_pairs > 0 && pairs.size () > static_cast<std::size_t> (args.max_pairs))
-      pairs.resize (args.max_pairs);
-    writeVMeasureCeilings (args, pairs);
-    return 0;
-  }
-  if (args.leave_one_out) {
+  if (args.leave_one_out && !args.v_ceiling) {  // trains on every pair, holds out the first max_pairs
     writeReport (args, runLeaveOneOut (args, pairs, options));
     return 0;
   }
   if (args.max_pairs > 0 && pairs.size () > static_cast<std::size_t> (args.max_pairs))
     pairs.resize (args.max_pairs);
+  if (args.v_ceiling) {
+    writeVMeasureCeilings (args, pairs);
+    return 0;
+  }
   std::vector<pcl_crf::MethodEvaluation> evaluations;
   for (const auto& name : args.methods) {
     auto method = prepareMethod (name, args);

@@ -6,6 +6,8 @@
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/lifted_matches.h>
 
+#include "cluster_numbering.h"
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -13,6 +15,8 @@
 
 namespace pcl_crf {
 namespace joint {
+
+using detail::numberLargestFirst;
 
 namespace {
 
@@ -70,37 +74,6 @@ pruneClusters (const LadderResult& round, const JointParameters& parameters, int
     next.cluster[i] = rank[rank[round.cluster[i]] >= 0 ? round.cluster[i] : best];
   }
   return true;
-}
-
-/** Renumbers the clusters of \a result largest first (their sizes, the
- *  outlier list and the static cluster follow). */
-void
-numberLargestFirst (JointResult& result)
-{
-  const int clusters = static_cast<int> (result.cluster_motions.size ());
-  const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster, clusters);
-  std::vector<int> order (static_cast<std::size_t> (clusters));
-  std::iota (order.begin (), order.end (), 0);
-  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
-  std::vector<int> rank (static_cast<std::size_t> (clusters));
-  std::vector<Rigid2d> motions;
-  result.cluster_sizes.clear ();
-  for (int k = 0; k < clusters; ++k) {
-    rank[order[k]] = k;
-    motions.push_back (result.cluster_motions[order[k]]);
-    result.cluster_sizes.push_back (sizes[order[k]]);
-  }
-  result.cluster_motions = std::move (motions);
-  result.outliers.clear ();
-  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
-    int& cluster = result.source_cluster[i];
-    if (cluster == kOutlierCluster)
-      result.outliers.push_back (static_cast<int> (i));
-    else
-      cluster = rank[cluster];
-  }
-  if (result.static_cluster >= 0)
-    result.static_cluster = rank[result.static_cluster];
 }
 
 /** Fills the result from the last round: clusters numbered largest first, the
@@ -247,6 +220,35 @@ liftedMatches (const JointResult& ladder, const Eigen::Matrix2Xd& source, const 
 }
 
 }  // namespace
+
+void
+detail::numberLargestFirst (JointResult& result)
+{
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster, clusters);
+  std::vector<int> order (static_cast<std::size_t> (clusters));
+  std::iota (order.begin (), order.end (), 0);
+  std::stable_sort (order.begin (), order.end (), [&sizes] (int a, int b) { return sizes[a] > sizes[b]; });
+  std::vector<int> rank (static_cast<std::size_t> (clusters));
+  std::vector<Rigid2d> motions;
+  result.cluster_sizes.clear ();
+  for (int k = 0; k < clusters; ++k) {
+    rank[order[k]] = k;
+    motions.push_back (result.cluster_motions[order[k]]);
+    result.cluster_sizes.push_back (sizes[order[k]]);
+  }
+  result.cluster_motions = std::move (motions);
+  result.outliers.clear ();
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    int& cluster = result.source_cluster[i];
+    if (cluster == kOutlierCluster)
+      result.outliers.push_back (static_cast<int> (i));
+    else
+      cluster = rank[cluster];
+  }
+  if (result.static_cluster >= 0)
+    result.static_cluster = rank[result.static_cluster];
+}
 
 void
 associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,

@@ -1,6 +1,8 @@
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/segment_motions.h>
 
+#include "cluster_numbering.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -98,22 +100,16 @@ removeClusters (const std::vector<bool>& removed, JointResult& result)
       motions.push_back (result.cluster_motions[l]);
     }
   result.cluster_motions = std::move (motions);
-  result.cluster_sizes.assign (result.cluster_motions.size (), 0);
-  result.outliers.clear ();
   for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
     int& l = result.source_cluster[i];
-    if (l != kOutlierCluster && removed[l]) {
-      l = kOutlierCluster;
-      result.source_match[i] = kNoMatch;
-    }
-    else if (l != kOutlierCluster)
-      l = rank[l];
     if (l == kOutlierCluster)
-      result.outliers.push_back (static_cast<int> (i));
-    else
-      ++result.cluster_sizes[l];
+      continue;
+    if (removed[l])
+      result.source_match[i] = kNoMatch;
+    l = rank[l];
   }
   result.static_cluster = rank[result.static_cluster];
+  detail::numberLargestFirst (result);  // the sizes and the outlier list
 }
 
 }  // namespace
