@@ -1,6 +1,7 @@
 #pragma once
-// Internal: the numbering of a joint result's clusters (joint_estimation.cpp), shared
-// with the removal of redundant clusters (redundant_clusters.cpp).
+// Internal: the numbering and checking of a joint result's clusters (joint_estimation.cpp),
+// shared with the steps that edit a result's clusters (redundant_clusters.cpp,
+// free_space_objects.cpp).
 
 #include <pcl_crf/joint/joint_estimation.h>
 
@@ -12,6 +13,12 @@ namespace detail {
  *  and the static cluster follow. */
 void
 numberLargestFirst (JointResult& result);
+
+/** \throws std::invalid_argument, naming \a function, when the result's matches and
+ *  clusters are not one per source point, a match is not a point of \a target or a
+ *  cluster (or the static one) is not one of the result's. */
+void
+checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
 
 }  // namespace detail
 }  // namespace joint

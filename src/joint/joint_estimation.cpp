@@ -251,6 +251,30 @@ detail::numberLargestFirst (JointResult& result)
 }
 
 void
+detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  const auto fail = [function] (const std::string& what) {
+    throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
+  };
+  const std::size_t n = result.source_cluster.size ();
+  if (result.source_match.size () != n)
+    fail (std::to_string (n) + " clusters but " + std::to_string (result.source_match.size ()) +
+          " matches: give one of each per source point");
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  if (result.static_cluster >= clusters)
+    fail ("the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
+          std::to_string (clusters) + " clusters");
+  for (std::size_t i = 0; i < n; ++i) {
+    const int l = result.source_cluster[i], j = result.source_match[i];
+    if (l != kOutlierCluster && (l < 0 || l >= clusters))
+      fail ("point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " + std::to_string (clusters));
+    if (j != kNoMatch && (j < 0 || j >= target.cols ()))
+      fail ("point " + std::to_string (i) + " is matched to target point " + std::to_string (j) + " of " +
+            std::to_string (target.cols ()));
+  }
+}
+
+void
 associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
                               const std::vector<int>& points, const std::vector<int>& cluster,
                               const std::vector<Rigid2d>& motions, std::vector<int>& source_match)
@@ -301,6 +325,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   }
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, model.matcher.parameters.candidates.segments, result);
+  if (parameters.separate_objects_in_free_space)
+    separateObjectsInFreeSpace (source, target, model.matcher.parameters.candidates.segments, result);
   return result;
 }
 

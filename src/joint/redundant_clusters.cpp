@@ -3,40 +3,12 @@
 
 #include "cluster_numbering.h"
 
-#include <stdexcept>
-#include <string>
+#include <vector>
 
 namespace pcl_crf {
 namespace joint {
 
 namespace {
-
-[[noreturn]] void
-fail (const std::string& what)
-{
-  throw std::invalid_argument ("[pcl_crf::joint::removeClustersTheStaticWorldExplains] " + what);
-}
-
-void
-checkResult (const Eigen::Matrix2Xd& target, const JointResult& result)
-{
-  const std::size_t n = result.source_cluster.size ();
-  if (result.source_match.size () != n)
-    fail (std::to_string (n) + " clusters but " + std::to_string (result.source_match.size ()) +
-          " matches: give one of each per source point");
-  const int clusters = static_cast<int> (result.cluster_motions.size ());
-  if (result.static_cluster >= clusters)
-    fail ("the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
-          std::to_string (clusters) + " clusters");
-  for (std::size_t i = 0; i < n; ++i) {
-    const int l = result.source_cluster[i], j = result.source_match[i];
-    if (l != kOutlierCluster && (l < 0 || l >= clusters))
-      fail ("point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " + std::to_string (clusters));
-    if (j != kNoMatch && (j < 0 || j >= target.cols ()))
-      fail ("point " + std::to_string (i) + " is matched to target point " + std::to_string (j) + " of " +
-            std::to_string (target.cols ()));
-  }
-}
 
 /** The target points the static world's points are matched to, as a kd-tree. */
 KnnIndex
@@ -118,7 +90,7 @@ int
 removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
-  checkResult (target, result);
+  detail::checkResultAgainstTarget ("removeClustersTheStaticWorldExplains", target, result);
   if (result.static_cluster < 0)
     return 0;
   const KnnIndex claimed = staticWorldTargets (target, result);

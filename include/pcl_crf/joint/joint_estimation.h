@@ -126,7 +126,9 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
  *  Last, clusters whose matches only repeat target points the static world explains
- *  are removed (removeClustersTheStaticWorldExplains ()).
+ *  are removed (removeClustersTheStaticWorldExplains ()), and objects the static
+ *  motion puts where the source saw through get clusters of their own
+ *  (separateObjectsInFreeSpace ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -173,6 +175,38 @@ associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& ta
 int
 removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Separates from the static world the objects its motion puts where the source
+ *  sensor saw through: a vehicle driving alongside shows a long side that slides along
+ *  itself, which the static motion maps onto the same side in the target, so only its
+ *  end and the free space around it show that it moved.
+ *
+ *  For every target segment (matching::segmentScan ()) some of whose points, moved back
+ *  by the static motion, lie where the source saw through (matching::seesThrough ()),
+ *  the candidate object is every static or outlier source point on the source segments
+ *  the static motion puts on that target segment (within the overlap radius). Its motion
+ *  slides the static motion along the target segment's principal axis: on a grid of
+ *  overlap_radius steps within ±max_displacement, the run of shifts with the fewest
+ *  points either sensor saw through (target points moved back, object points moved
+ *  forward) is found, its ends refined by bisection, and its middle taken (slid too
+ *  little, the target's end sticks out where the source saw through; too far, the
+ *  source's end sticks out where the target saw through). The object becomes a new
+ *  cluster when that run ends within reach on both sides (the slide is observed),
+ *  resolves at least two and at least half of the static motion's points seen through
+ *  (a lone mixed pixel is no evidence) and puts at least as many object points on the
+ *  segment: its points on the segment take their nearest target point, the others no
+ *  match. Clusters are renumbered largest first.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters segmentation, overlap radius and largest displacement (the
+ *             matcher's segment parameters)
+ *  \param[in,out] result a joint result for these scans
+ *  \return the number of clusters added
+ *  \throws std::invalid_argument when the result's sizes disagree with the scans or a
+ *          match or cluster is out of range. */
+int
+separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                            const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief A joint result as a Prediction for the metrics: the associations, the
  *  clusters with the outlier cluster's points given the cluster of their nearest

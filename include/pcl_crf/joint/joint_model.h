@@ -34,6 +34,9 @@ struct JointParameters
   /** true (default): clusters whose matches only repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;
+  /** true (default): objects the static motion puts where the source saw through get a
+   *  cluster of their own (separateObjectsInFreeSpace ()). */
+  bool separate_objects_in_free_space = true;
 };
 
 /** \brief \throws std::invalid_argument naming the first setting out of range. */

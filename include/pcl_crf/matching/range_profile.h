@@ -1,0 +1,54 @@
+#pragma once
+
+#include <Eigen/Core>
+
+namespace pcl_crf {
+namespace matching {
+
+/** \brief What a scan's sensor saw in every direction: the range of each return by
+ *  bearing, for asking whether the sensor saw through a point (a free-space test, as
+ *  in range-image differencing).
+ *
+ *  Scans store returns only, so a direction without a return nearby is one whose beam
+ *  saw nothing up to the sensor's range: free up to the farthest return of the scan.
+ *
+ *  \code
+ *  const pcl_crf::matching::RangeProfile seen = pcl_crf::matching::makeRangeProfile (source_points);
+ *  // a target point the static motion maps where the source saw through has moved in
+ *  const bool moved_in = pcl_crf::matching::seesThrough (seen, T_static.inverse () * t, 0.1745, 0.01);
+ *  \endcode
+ */
+struct RangeProfile
+{
+  /** bearings atan2 (y, x) of the returns, increasing [rad, (−π, π]]. */
+  Eigen::VectorXd bearings;
+  /** ranges of the returns in the same order [m]. */
+  Eigen::VectorXd ranges;
+  /** the typical angle between neighbouring returns, their median step [rad]
+   *  (0 with fewer than two returns). */
+  double step = 0.0;
+  /** the farthest return [m]: beyond it, a direction without a return says nothing. */
+  double max_range = 0.0;
+  /** true when the returns go all round (no gap wider than 1.5 steps): bearings wrap. */
+  bool full_circle = false;
+};
+
+/** \brief The range profile of a scan in its own sensor frame (any point order).
+ *  \throws std::invalid_argument for a non-finite point. */
+RangeProfile
+makeRangeProfile (const Eigen::Matrix2Xd& scan);
+
+/** \brief true when the profile's sensor saw through \a point (in its frame): the
+ *  point lies inside the field of view and either every return within one step of
+ *  its bearing lies farther than it by more than the breakpoint distance
+ *  r sin Δφ / sin(λ − Δφ) + 3σ of the adaptive breakpoint detector (so it is on no
+ *  surface the sensor saw; Δφ the step, r the point's range), or no return lies within
+ *  one step and the point lies nearer than the farthest return by that distance (the
+ *  beams there saw nothing in range). False for profiles of fewer than two returns.
+ *  \param[in] breakpoint_angle λ, the worst incidence angle on one surface [rad]
+ *  \param[in] range_noise σ, the laser's range noise [m] */
+bool
+seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double breakpoint_angle, double range_noise);
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,141 @@
+#include <pcl_crf/matching/range_profile.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+namespace pcl_crf {
+namespace matching {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+/** Counter-clockwise angle from a to b, in [0, 2π). */
+double
+counterClockwise (double a, double b)
+{
+  const double d = std::fmod (b - a, kTwoPi);
+  return d < 0.0 ? d + kTwoPi : d;
+}
+
+/** The median of the steps between neighbouring sorted bearings (at least two). */
+double
+medianStep (const Eigen::VectorXd& bearings)
+{
+  std::vector<double> steps (static_cast<std::size_t> (bearings.size () - 1));
+  for (std::size_t k = 0; k < steps.size (); ++k)
+    steps[k] = bearings (k + 1) - bearings (k);
+  const auto middle = steps.begin () + steps.size () / 2;
+  std::nth_element (steps.begin (), middle, steps.end ());
+  return *middle;
+}
+
+/** Index a of the widest circular gap of sorted bearings, between returns a and a + 1 (mod m). */
+Eigen::Index
+widestGap (const Eigen::VectorXd& bearings, double& width)
+{
+  const Eigen::Index m = bearings.size ();
+  Eigen::Index widest = m - 1;
+  width = counterClockwise (bearings (m - 1), bearings (0));
+  for (Eigen::Index k = 0; k + 1 < m; ++k)
+    if (bearings (k + 1) - bearings (k) > width) {
+      width = bearings (k + 1) - bearings (k);
+      widest = k;
+    }
+  return widest;
+}
+
+/** Rotates the sorted profile so that its widest gap lies between its last and first
+ *  return, taking the bearings past the wrap 2π up (so they stay increasing). */
+void
+startAfterWidestGap (RangeProfile& profile, Eigen::Index widest)
+{
+  const Eigen::Index m = profile.bearings.size ();
+  if (widest == m - 1)
+    return;
+  const Eigen::Index first = widest + 1;
+  Eigen::VectorXd bearings (m), ranges (m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Eigen::Index from = (first + k) % m;
+    bearings (k) = profile.bearings (from) + (from < first ? kTwoPi : 0.0);
+    ranges (k) = profile.ranges (from);
+  }
+  profile.bearings = std::move (bearings);
+  profile.ranges = std::move (ranges);
+}
+
+/** The bearing of \a point moved into [first, first + 2π) of the profile. */
+double
+bearingFrom (const RangeProfile& profile, const Eigen::Vector2d& point)
+{
+  const double first = profile.bearings (0);
+  return first + counterClockwise (first, std::atan2 (point.y (), point.x ()));
+}
+
+}  // namespace
+
+RangeProfile
+makeRangeProfile (const Eigen::Matrix2Xd& scan)
+{
+  if (!scan.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::matching::makeRangeProfile] the scan holds a non-finite point");
+  const Eigen::Index m = scan.cols ();
+  std::vector<Eigen::Index> order (static_cast<std::size_t> (m));
+  std::iota (order.begin (), order.end (), Eigen::Index (0));
+  Eigen::VectorXd bearing (m);
+  for (Eigen::Index j = 0; j < m; ++j)
+    bearing (j) = std::atan2 (scan (1, j), scan (0, j));
+  std::stable_sort (order.begin (), order.end (), [&] (Eigen::Index a, Eigen::Index b) { return bearing (a) < bearing (b); });
+  RangeProfile profile;
+  profile.bearings.resize (m);
+  profile.ranges.resize (m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    profile.bearings (k) = bearing (order[k]);
+    profile.ranges (k) = scan.col (order[k]).norm ();
+  }
+  if (m < 2)
+    return profile;
+  profile.step = medianStep (profile.bearings);
+  profile.max_range = profile.ranges.maxCoeff ();
+  double gap = 0.0;
+  const Eigen::Index widest = widestGap (profile.bearings, gap);
+  profile.full_circle = gap <= 1.5 * profile.step;
+  if (!profile.full_circle)
+    startAfterWidestGap (profile, widest);
+  return profile;
+}
+
+bool
+seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double breakpoint_angle, double range_noise)
+{
+  const Eigen::Index m = profile.bearings.size ();
+  const double step = profile.step;
+  if (m < 2 || !(step > 0.0) || breakpoint_angle <= step)
+    return false;
+  const double theta = bearingFrom (profile, point);
+  const double last = profile.bearings (m - 1);
+  if (!profile.full_circle && theta > last)  // in the widest gap: outside the field of view
+    return false;
+  const double range = point.norm ();
+  const double margin = range * std::sin (step) / std::sin (breakpoint_angle - step) + 3.0 * range_noise;
+  const double* begin = profile.bearings.data ();
+  const Eigen::Index after = std::lower_bound (begin, begin + m, theta) - begin;
+  bool near_return = false;
+  for (Eigen::Index k : {after - 1, after}) {  // the returns on either side (wrapping on a full circle)
+    const Eigen::Index j = (k % m + m) % m;
+    const double apart = std::min (counterClockwise (profile.bearings (j), theta),
+                                   counterClockwise (theta, profile.bearings (j)));
+    if (apart > step)
+      continue;
+    near_return = true;
+    if (profile.ranges (j) <= range + margin)
+      return false;
+  }
+  return near_return || range + margin < profile.max_range;
+}
+
+}  // namespace matching
+}  // namespace pcl_crf

@@ -1,0 +1,143 @@
+#include <pcl_crf/matching/range_profile.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+using pcl_crf::matching::makeRangeProfile;
+using pcl_crf::matching::seesThrough;
+
+constexpr double kDegree = M_PI / 180.0;
+constexpr double kLambda = 10.0 * kDegree;  // breakpoint angle
+constexpr double kNoise = 0.01;
+
+Eigen::Vector2d
+polar (double degrees, double range)
+{
+  return range * Eigen::Vector2d (std::cos (degrees * kDegree), std::sin (degrees * kDegree));
+}
+
+/** Returns from the given beams (degrees) on a wall x = 5 m. */
+Eigen::Matrix2Xd
+wallScan (const std::vector<int>& beams)
+{
+  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (beams.size ()));
+  for (std::size_t k = 0; k < beams.size (); ++k)
+    scan.col (static_cast<Eigen::Index> (k)) = polar (beams[k], 5.0 / std::cos (beams[k] * kDegree));
+  return scan;
+}
+
+/** Beams every degree over [−45°, 45°] on the wall; 10°–20° saw nothing, and −20°
+ *  dropped out. */
+Eigen::Matrix2Xd
+wallWithOpening ()
+{
+  std::vector<int> beams;
+  for (int degrees = -45; degrees <= 45; ++degrees)
+    if ((degrees < 10 || degrees > 20) && degrees != -20)
+      beams.push_back (degrees);
+  return wallScan (beams);
+}
+
+/** The breakpoint distance at range r for 1° steps: r sin 1° / sin 9° + 3σ. */
+double
+margin (double r)
+{
+  return r * std::sin (kDegree) / std::sin (9.0 * kDegree) + 3.0 * kNoise;
+}
+
+TEST (RangeProfile, SortsReturnsByBearingAndFindsTheStepAndFarthestReturn)
+{
+  Eigen::Matrix2Xd scan = wallWithOpening ();
+  std::swap (scan (0, 0), scan (0, 5));  // any order
+  std::swap (scan (1, 0), scan (1, 5));
+  const auto profile = makeRangeProfile (scan);
+  ASSERT_EQ (profile.bearings.size (), 79);  // 91 beams, 11 in the opening, one dropped
+  EXPECT_NEAR (profile.bearings (0), -45.0 * kDegree, 1e-12);
+  EXPECT_NEAR (profile.bearings (78), 45.0 * kDegree, 1e-12);
+  EXPECT_NEAR (profile.ranges (0), 5.0 * std::sqrt (2.0), 1e-12);
+  EXPECT_NEAR (profile.step, kDegree, 1e-12);
+  EXPECT_NEAR (profile.max_range, 5.0 * std::sqrt (2.0), 1e-12);
+  EXPECT_FALSE (profile.full_circle);
+}
+
+TEST (RangeProfile, APointBeforeTheReturnsAroundItWasSeenThrough)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  // At 0.5° the returns at 0° and 1° lie at 5 m and 5.0008 m; margin (3) = 0.365 m.
+  EXPECT_TRUE (seesThrough (profile, polar (0.5, 3.0), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (0.5, 5.0 - margin (4.4) - 0.01), kLambda, kNoise));
+  // On the wall, just before it (within the margin) or behind it: not seen through.
+  EXPECT_FALSE (seesThrough (profile, polar (0.5, 4.8), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (0.5, 5.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (0.5, 6.0), kLambda, kNoise));
+}
+
+TEST (RangeProfile, DirectionsWithoutReturnsAreFreeUpToTheFarthestReturn)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  // 15°: the nearest returns (9°, 21°) are 6 steps away; free up to 7.07 m.
+  EXPECT_TRUE (seesThrough (profile, polar (15.0, 5.0), kLambda, kNoise));  // 5 + 0.588 < 7.07
+  EXPECT_FALSE (seesThrough (profile, polar (15.0, 6.6), kLambda, kNoise));  // 6.6 + 0.766 > 7.07
+  // 9.5°: the return at 9° (5.066 m) is within a step, the one at 21° is not.
+  EXPECT_TRUE (seesThrough (profile, polar (9.5, 3.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (9.5, 5.0), kLambda, kNoise));
+  // A dropped beam is no opening: at −20.2° the return at −21° (5.356 m) is within a step.
+  EXPECT_FALSE (seesThrough (profile, polar (-20.2, 5.2), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (-20.2, 4.0), kLambda, kNoise));
+}
+
+TEST (RangeProfile, NothingOutsideTheFieldOfViewWasSeenThrough)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  EXPECT_FALSE (seesThrough (profile, polar (60.0, 1.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (-90.0, 1.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (180.0, 1.0), kLambda, kNoise));
+}
+
+TEST (RangeProfile, AFieldOfViewAcrossTheBackWraps)
+{
+  // A rear scanner: beams over [135°, 225°] on a circle of radius 4 m.
+  Eigen::Matrix2Xd scan (2, 91);
+  for (int k = 0; k <= 90; ++k)
+    scan.col (k) = polar (135.0 + k, 4.0);
+  const auto profile = makeRangeProfile (scan);
+  EXPECT_FALSE (profile.full_circle);
+  EXPECT_NEAR (profile.step, kDegree, 1e-9);
+  EXPECT_TRUE (seesThrough (profile, polar (180.0, 2.0), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (-179.7, 2.0), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (179.7, 2.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (180.0, 3.9), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (0.0, 1.0), kLambda, kNoise));  // in front: not looked at
+}
+
+TEST (RangeProfile, AFullCircleWrapsAtTheBack)
+{
+  Eigen::Matrix2Xd scan (2, 360);
+  for (int k = 0; k < 360; ++k)
+    scan.col (k) = polar (-179.0 + k, 4.0);
+  const auto profile = makeRangeProfile (scan);
+  EXPECT_TRUE (profile.full_circle);
+  EXPECT_TRUE (seesThrough (profile, polar (179.9, 2.0), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (-179.9, 2.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (profile, polar (-179.9, 3.9), kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (profile, polar (90.3, 3.5 - margin (3.5)), kLambda, kNoise));
+}
+
+TEST (RangeProfile, TooFewReturnsSayNothingAndNonFinitePointsAreRejected)
+{
+  EXPECT_FALSE (seesThrough (makeRangeProfile (Eigen::Matrix2Xd (2, 0)), polar (0.0, 1.0), kLambda, kNoise));
+  EXPECT_FALSE (seesThrough (makeRangeProfile (wallScan ({0})), polar (0.0, 1.0), kLambda, kNoise));
+  // A breakpoint angle no larger than the step leaves no margin to judge by.
+  EXPECT_FALSE (seesThrough (makeRangeProfile (wallWithOpening ()), polar (0.5, 1.0), 0.5 * kDegree, kNoise));
+  Eigen::Matrix2Xd bad = wallWithOpening ();
+  bad (1, 3) = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (makeRangeProfile (bad), std::invalid_argument);
+}
+
+}  // namespace
