@@ -19,7 +19,7 @@ namespace joint {
 namespace {
 
 /** Everything the search for moved-in objects reads: both scans, what each sensor saw,
- *  and their segments. */
+ *  their segments, and the target's points as a kd-tree with their overlap radii. */
 struct FreeSpaceScene
 {
   const Eigen::Matrix2Xd& source;
@@ -27,9 +27,14 @@ struct FreeSpaceScene
   const matching::SegmentMotionParameters& parameters;
   matching::RangeProfile source_view;
   matching::RangeProfile target_view;
+  matching::BreakpointDistance source_breakpoint;
+  matching::BreakpointDistance target_breakpoint;
   std::vector<matching::ScanSegment> source_segments;
-  std::vector<matching::ScanSegment> target_segments;
   std::vector<int> source_segment_of;  // per source point: its segment
+  std::vector<matching::ScanSegment> target_segments;
+  std::vector<int> target_segment_of;  // per target point: its segment
+  std::vector<double> target_radius;   // per target point: its overlap radius on its segment
+  KnnIndex target_points;
 };
 
 std::vector<int>
@@ -42,6 +47,37 @@ segmentOfPoints (const std::vector<matching::ScanSegment>& segments, Eigen::Inde
   return of;
 }
 
+FreeSpaceScene
+makeScene (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+           const matching::SegmentMotionParameters& parameters)
+{
+  const double angle = parameters.breakpoint_angle, noise = parameters.range_noise;
+  FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source),
+                       matching::makeRangeProfile (target), {}, {}, {}, {}, {}, {}, {}, {}};
+  scene.source_breakpoint = matching::breakpointDistance (scene.source_view, angle, noise);
+  scene.target_breakpoint = matching::breakpointDistance (scene.target_view, angle, noise);
+  scene.source_segments = matching::segmentScan (source, angle, noise);
+  scene.source_segment_of = segmentOfPoints (scene.source_segments, source.cols ());
+  scene.target_segments = matching::segmentScan (target, angle, noise);
+  scene.target_segment_of = segmentOfPoints (scene.target_segments, target.cols ());
+  scene.target_radius.assign (static_cast<std::size_t> (target.cols ()), 0.0);
+  for (const matching::ScanSegment& segment : scene.target_segments)
+    for (int j = segment.begin; j < segment.end; ++j)
+      scene.target_radius[j] =
+          matching::overlapRadius (parameters, matching::pointSpacing (target, j, segment.begin, segment.end));
+  return scene;
+}
+
+/** The source points \a points moved by T, as columns. */
+Eigen::Matrix2Xd
+movedPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
+{
+  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k)
+    moved.col (static_cast<Eigen::Index> (k)) = T * scene.source.col (points[k]);
+  return moved;
+}
+
 /** How well a motion hypothesis of a candidate object fits: its source points that
  *  land on the target segment, and the points either sensor saw through. */
 struct HypothesisFit
@@ -49,19 +85,6 @@ struct HypothesisFit
   int explained = 0;
   int seen_through = 0;
 };
-
-/** Source point i moved by \a T lands within its overlap radius of a point of \a segment. */
-bool
-landsOn (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Eigen::Vector2d& moved)
-{
-  for (int j = segment.begin; j < segment.end; ++j) {
-    const double radius = matching::overlapRadius (
-        scene.parameters, matching::pointSpacing (scene.target, j, segment.begin, segment.end));
-    if ((scene.target.col (j) - moved).squaredNorm () <= radius * radius)
-      return true;
-  }
-  return false;
-}
 
 /** The target points of \a segment the source saw through when moved back by T⁻¹
  *  (T_target_source): under T they were not there, so they moved in. */
@@ -71,43 +94,64 @@ segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& se
   const Rigid2d T_inverse = T.inverse ();
   int seen_through = 0;
   for (int j = segment.begin; j < segment.end; ++j)
-    seen_through += matching::seesThrough (scene.source_view, T_inverse * scene.target.col (j),
-                                           scene.parameters.breakpoint_angle, scene.parameters.range_noise);
+    seen_through += matching::seesThrough (scene.source_view, T_inverse * scene.target.col (j), scene.source_breakpoint);
   return seen_through;
 }
 
-/** The fit of T for the object's source points \a object and its target \a segment:
- *  segmentSeenThrough () plus the object's points the target saw through when moved
- *  by T (under T they are no longer there). */
+/** The object's points the target saw through when moved by T (under T they are no
+ *  longer there). */
+int
+objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, const Rigid2d& T)
+{
+  int seen_through = 0;
+  for (int i : object)
+    seen_through += matching::seesThrough (scene.target_view, T * scene.source.col (i), scene.target_breakpoint);
+  return seen_through;
+}
+
+/** Per point of \a points: the target segment T puts it on, or -1: the segment of its
+ *  nearest target point when that lies within its overlap radius. */
+std::vector<int>
+landingSegments (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
+{
+  std::vector<int> landing (points.size (), -1);
+  if (points.empty ())
+    return landing;
+  const KnnIndex::Result nearest = scene.target_points.search (movedPoints (scene, points, T), 1);  // one batch
+  for (std::size_t k = 0; k < points.size (); ++k) {
+    const auto column = static_cast<Eigen::Index> (k);
+    const int j = nearest.indices (0, column);
+    if (j >= 0 && nearest.squared_distances (0, column) <= scene.target_radius[j] * scene.target_radius[j])
+      landing[k] = scene.target_segment_of[j];
+  }
+  return landing;
+}
+
+/** The fit of T for the object's source points \a object and its target segment. */
 HypothesisFit
-fitOf (const FreeSpaceScene& scene, const std::vector<int>& object, const matching::ScanSegment& segment,
-       const Rigid2d& T)
+fitOf (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T)
 {
   HypothesisFit fit;
-  fit.seen_through = segmentSeenThrough (scene, segment, T);
-  for (int i : object) {
-    const Eigen::Vector2d moved = T * scene.source.col (i);
-    fit.seen_through += matching::seesThrough (scene.target_view, moved, scene.parameters.breakpoint_angle,
-                                               scene.parameters.range_noise);
-    fit.explained += landsOn (scene, segment, moved);
-  }
+  fit.seen_through = segmentSeenThrough (scene, scene.target_segments[segment], T) + objectSeenThrough (scene, object, T);
+  for (int landed : landingSegments (scene, object, T))
+    fit.explained += landed == segment ? 1 : 0;
   return fit;
 }
 
-/** The static world's (or unclustered) source points on the segments of those that
- *  \a T_static puts on the target \a segment: the candidate object. */
+/** The candidate object of target segment \a segment: the points of \a free (static
+ *  or unclustered; \a landing, their landingSegments () under the static motion) on
+ *  the source segments of those the static motion puts on it. */
 std::vector<int>
-objectOnSegment (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Rigid2d& T_static,
-                 const std::vector<int>& cluster, int static_cluster)
+objectOnSegment (const FreeSpaceScene& scene, int segment, const std::vector<int>& free,
+                 const std::vector<int>& landing)
 {
-  const auto unclaimed = [&] (int i) { return cluster[i] == static_cluster || cluster[i] == kOutlierCluster; };
   std::vector<bool> on_segment (scene.source_segments.size (), false);
-  for (int i = 0; i < static_cast<int> (scene.source.cols ()); ++i)
-    if (unclaimed (i) && scene.source_segment_of[i] >= 0 && landsOn (scene, segment, T_static * scene.source.col (i)))
-      on_segment[scene.source_segment_of[i]] = true;
+  for (std::size_t k = 0; k < free.size (); ++k)
+    if (landing[k] == segment && scene.source_segment_of[free[k]] >= 0)
+      on_segment[scene.source_segment_of[free[k]]] = true;
   std::vector<int> object;
-  for (int i = 0; i < static_cast<int> (scene.source.cols ()); ++i)
-    if (unclaimed (i) && scene.source_segment_of[i] >= 0 && on_segment[scene.source_segment_of[i]])
+  for (int i : free)
+    if (scene.source_segment_of[i] >= 0 && on_segment[scene.source_segment_of[i]])
       object.push_back (i);
   return object;
 }
@@ -127,7 +171,7 @@ struct ShiftSearch
 {
   const FreeSpaceScene& scene;
   const std::vector<int>& object;
-  const matching::ScanSegment& segment;
+  int segment;
   Rigid2d T_static;
   Eigen::Vector2d axis;
 
@@ -140,7 +184,8 @@ struct ShiftSearch
   int
   seenThrough (double shift) const
   {
-    return fitOf (scene, object, segment, motion (shift)).seen_through;
+    const Rigid2d T = motion (shift);
+    return segmentSeenThrough (scene, scene.target_segments[segment], T) + objectSeenThrough (scene, object, T);
   }
 };
 
@@ -167,7 +212,7 @@ bool
 freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
 {
   constexpr double kMostSteps = 4096.0;  // each way: bounds the work for a huge max_displacement
-  const double step = search.scene.parameters.overlap_radius;
+  const double step = 2.0 * search.scene.parameters.overlap_radius;
   const double steps = std::ceil (search.scene.parameters.max_displacement / step);
   if (!(step > 0.0) || !(steps >= 1.0))
     return false;
@@ -192,23 +237,35 @@ freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
   return true;
 }
 
-/** The object's points join a new cluster of motion T: those it puts on the target
- *  segment matched to the nearest target point, the others unmatched. */
+/** The object's points join a new cluster of motion T: those it puts on target segment
+ *  \a segment matched to their nearest target point, the others unmatched. */
 void
-addCluster (const FreeSpaceScene& scene, const std::vector<int>& object, const matching::ScanSegment& segment,
-            const Rigid2d& T, const KnnIndex& target_points, JointResult& result)
+addCluster (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T,
+            JointResult& result)
 {
   const int cluster = static_cast<int> (result.cluster_motions.size ());
   result.cluster_motions.push_back (T);
+  const std::vector<int> landing = landingSegments (scene, object, T);
   std::vector<int> landed;
-  for (int i : object) {
-    result.source_cluster[i] = cluster;
-    result.source_match[i] = kNoMatch;
-    if (landsOn (scene, segment, T * scene.source.col (i)))
-      landed.push_back (i);
+  for (std::size_t k = 0; k < object.size (); ++k) {
+    result.source_cluster[object[k]] = cluster;
+    result.source_match[object[k]] = kNoMatch;
+    if (landing[k] == segment)
+      landed.push_back (object[k]);
   }
-  associateUnderClusterMotions (scene.source, target_points, landed, result.source_cluster, result.cluster_motions,
-                                result.source_match);
+  associateUnderClusterMotions (scene.source, scene.target_points, landed, result.source_cluster,
+                                result.cluster_motions, result.source_match);
+}
+
+/** The static world's and the unclustered points. */
+std::vector<int>
+freePoints (const JointResult& result)
+{
+  std::vector<int> free;
+  for (int i = 0; i < static_cast<int> (result.source_cluster.size ()); ++i)
+    if (result.source_cluster[i] == result.static_cluster || result.source_cluster[i] == kOutlierCluster)
+      free.push_back (i);
+  return free;
 }
 
 }  // namespace
@@ -223,32 +280,39 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
                                  " source points but " + std::to_string (result.source_cluster.size ()) + " clusters");
   if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
     return 0;
-  FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source),
-                       matching::makeRangeProfile (target),
-                       matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
-                       matching::segmentScan (target, parameters.breakpoint_angle, parameters.range_noise), {}};
-  scene.source_segment_of = segmentOfPoints (scene.source_segments, source.cols ());
+  FreeSpaceScene scene = makeScene (source, target, parameters);
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  KnnIndex target_points;
+  std::vector<int> moved_in;  // target segments with points the source saw through
+  for (int g = 0; g < static_cast<int> (scene.target_segments.size ()); ++g) {
+    const matching::ScanSegment& segment = scene.target_segments[g];
+    if (segment.size () >= parameters.min_segment_points && segmentSeenThrough (scene, segment, T_static) > 0)
+      moved_in.push_back (g);
+  }
+  if (moved_in.empty ())
+    return 0;
+  scene.target_points.build (target);
+  const std::vector<int> free = freePoints (result);
+  const std::vector<int> landing = landingSegments (scene, free, T_static);
   int added = 0;
-  for (const matching::ScanSegment& segment : scene.target_segments) {
-    if (segment.size () < parameters.min_segment_points || segmentSeenThrough (scene, segment, T_static) == 0)
-      continue;
-    const std::vector<int> object = objectOnSegment (scene, segment, T_static, result.source_cluster,
-                                                     result.static_cluster);
+  for (int g : moved_in) {
+    std::vector<int> object = objectOnSegment (scene, g, free, landing);
+    object.erase (std::remove_if (object.begin (), object.end (),
+                                  [&] (int i) { return result.source_cluster[i] != result.static_cluster &&
+                                                       result.source_cluster[i] != kOutlierCluster; }),
+                  object.end ());  // points an earlier segment's object took
     if (static_cast<int> (object.size ()) < parameters.min_segment_points)
       continue;
-    const HypothesisFit as_static = fitOf (scene, object, segment, T_static);
-    const ShiftSearch search{scene, object, segment, T_static, principalAxis (target, segment)};
+    const HypothesisFit as_static = fitOf (scene, object, g, T_static);
+    if (as_static.seen_through < 2)  // freeSpaceShift () must resolve two
+      continue;
+    const ShiftSearch search{scene, object, g, T_static, principalAxis (target, scene.target_segments[g])};
     double shift = 0.0;
     if (!freeSpaceShift (search, as_static.seen_through, shift))
       continue;
-    const Rigid2d T_best = search.motion (shift);
-    if (fitOf (scene, object, segment, T_best).explained < as_static.explained)
+    const Rigid2d T_moved = search.motion (shift);
+    if (fitOf (scene, object, g, T_moved).explained < as_static.explained)
       continue;
-    if (target_points.size () == 0)
-      target_points.build (target);
-    addCluster (scene, object, segment, T_best, target_points, result);
+    addCluster (scene, object, g, T_moved, result);
     ++added;
   }
   if (added > 0)

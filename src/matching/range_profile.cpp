@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -108,19 +109,36 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan)
   return profile;
 }
 
+BreakpointDistance
+breakpointDistance (const RangeProfile& profile, double breakpoint_angle, double range_noise)
+{
+  const double step = profile.step;
+  BreakpointDistance distance;
+  distance.slope = breakpoint_angle > step ? std::sin (step) / std::sin (breakpoint_angle - step)
+                                           : std::numeric_limits<double>::infinity ();
+  distance.offset = 3.0 * range_noise;
+  return distance;
+}
+
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double breakpoint_angle, double range_noise)
 {
+  return seesThrough (profile, point, breakpointDistance (profile, breakpoint_angle, range_noise));
+}
+
+bool
+seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
   const Eigen::Index m = profile.bearings.size ();
   const double step = profile.step;
-  if (m < 2 || !(step > 0.0) || breakpoint_angle <= step)
+  if (m < 2 || !(step > 0.0) || !std::isfinite (distance.slope))
     return false;
   const double theta = bearingFrom (profile, point);
   const double last = profile.bearings (m - 1);
   if (!profile.full_circle && theta > last)  // in the widest gap: outside the field of view
     return false;
   const double range = point.norm ();
-  const double margin = range * std::sin (step) / std::sin (breakpoint_angle - step) + 3.0 * range_noise;
+  const double margin = range * distance.slope + distance.offset;
   const double* begin = profile.bearings.data ();
   const Eigen::Index after = std::lower_bound (begin, begin + m, theta) - begin;
   bool near_return = false;

@@ -50,5 +50,20 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan);
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double breakpoint_angle, double range_noise);
 
+/** \brief The breakpoint distance of seesThrough () as slope · r + offset, for asking
+ *  about many points: slope sin Δφ / sin(λ − Δφ), offset 3σ (slope +inf when λ ≤ Δφ). */
+struct BreakpointDistance
+{
+  double slope = 0.0;
+  double offset = 0.0;
+};
+
+BreakpointDistance
+breakpointDistance (const RangeProfile& profile, double breakpoint_angle, double range_noise);
+
+/** \brief seesThrough () with the breakpoint distance computed once. */
+bool
+seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
+
 }  // namespace matching
 }  // namespace pcl_crf
