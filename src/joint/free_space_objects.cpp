@@ -202,7 +202,7 @@ refineEdge (const ShiftSearch& search, double inside, double outside, int fewest
 }
 
 /** The shift along the axis that both sensors' free space allows best: on a grid of
- *  overlap_radius steps within ±max_displacement, the run of shifts with the fewest
+ *  2 overlap_radius steps within ±max_displacement, the run of shifts with the fewest
  *  points seen through, its ends refined, and \a shift its middle (slid too little,
  *  the target's end sticks out where the source saw through; too far, the source's
  *  end sticks out where the target saw through). \return false unless the run has

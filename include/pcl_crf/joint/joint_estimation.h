@@ -184,9 +184,10 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
  *  For every target segment (matching::segmentScan ()) some of whose points, moved back
  *  by the static motion, lie where the source saw through (matching::seesThrough ()),
  *  the candidate object is every static or outlier source point on the source segments
- *  the static motion puts on that target segment (within the overlap radius). Its motion
+ *  the static motion puts on that target segment (nearest target point on it, within its
+ *  overlap radius). Its motion
  *  slides the static motion along the target segment's principal axis: on a grid of
- *  overlap_radius steps within ±max_displacement, the run of shifts with the fewest
+ *  2 overlap_radius steps within ±max_displacement, the run of shifts with the fewest
  *  points either sensor saw through (target points moved back, object points moved
  *  forward) is found, its ends refined by bisection, and its middle taken (slid too
  *  little, the target's end sticks out where the source saw through; too far, the
