@@ -19,7 +19,8 @@ namespace joint {
 namespace {
 
 /** Everything the search for moved-in objects reads: both scans, what each sensor saw,
- *  their segments, and the target's points as a kd-tree with their overlap radii. */
+ *  their segments, and the target's points as a kd-tree with their overlap radii
+ *  (makeScene () fills what every pair needs, completeScene () the rest). */
 struct FreeSpaceScene
 {
   const Eigen::Matrix2Xd& source;
@@ -47,25 +48,37 @@ segmentOfPoints (const std::vector<matching::ScanSegment>& segments, Eigen::Inde
   return of;
 }
 
+/** The part of the scene every pair needs: what the source saw and the target's
+ *  segments, to find the segments with points the source saw through. */
 FreeSpaceScene
 makeScene (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
            const matching::SegmentMotionParameters& parameters)
 {
   const double angle = parameters.breakpoint_angle, noise = parameters.range_noise;
-  FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source),
-                       matching::makeRangeProfile (target), {}, {}, {}, {}, {}, {}, {}, {}};
+  FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source), {}, {}, {}, {}, {}, {}, {},
+                       {}, {}};
   scene.source_breakpoint = matching::breakpointDistance (scene.source_view, angle, noise);
-  scene.target_breakpoint = matching::breakpointDistance (scene.target_view, angle, noise);
-  scene.source_segments = matching::segmentScan (source, angle, noise);
-  scene.source_segment_of = segmentOfPoints (scene.source_segments, source.cols ());
   scene.target_segments = matching::segmentScan (target, angle, noise);
-  scene.target_segment_of = segmentOfPoints (scene.target_segments, target.cols ());
-  scene.target_radius.assign (static_cast<std::size_t> (target.cols ()), 0.0);
+  return scene;
+}
+
+/** The rest of the scene, needed only once a segment has points the source saw through. */
+void
+completeScene (FreeSpaceScene& scene)
+{
+  const matching::SegmentMotionParameters& parameters = scene.parameters;
+  scene.target_view = matching::makeRangeProfile (scene.target);
+  scene.target_breakpoint =
+      matching::breakpointDistance (scene.target_view, parameters.breakpoint_angle, parameters.range_noise);
+  scene.source_segments = matching::segmentScan (scene.source, parameters.breakpoint_angle, parameters.range_noise);
+  scene.source_segment_of = segmentOfPoints (scene.source_segments, scene.source.cols ());
+  scene.target_segment_of = segmentOfPoints (scene.target_segments, scene.target.cols ());
+  scene.target_radius.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   for (const matching::ScanSegment& segment : scene.target_segments)
     for (int j = segment.begin; j < segment.end; ++j)
       scene.target_radius[j] =
-          matching::overlapRadius (parameters, matching::pointSpacing (target, j, segment.begin, segment.end));
-  return scene;
+          matching::overlapRadius (parameters, matching::pointSpacing (scene.target, j, segment.begin, segment.end));
+  scene.target_points.build (scene.target);
 }
 
 /** The source points \a points moved by T, as columns. */
@@ -290,7 +303,7 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
   }
   if (moved_in.empty ())
     return 0;
-  scene.target_points.build (target);
+  completeScene (scene);
   const std::vector<int> free = freePoints (result);
   const std::vector<int> landing = landingSegments (scene, free, T_static);
   int added = 0;
