@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -179,7 +180,9 @@ principalAxis (const Eigen::Matrix2Xd& target, const matching::ScanSegment& segm
   return solver.eigenvectors ().col (1);  // eigenvalues increase
 }
 
-/** The object's motions searched: T_static slid along the target segment's axis. */
+/** The object's motions searched: T_static slid along the target segment's axis
+ *  within ±\a reach, first on a grid of \a coarse_step, then around its best shift on
+ *  a grid of \a fine_step (≤ coarse_step). */
 struct ShiftSearch
 {
   const FreeSpaceScene& scene;
@@ -187,6 +190,9 @@ struct ShiftSearch
   int segment;
   Rigid2d T_static;
   Eigen::Vector2d axis;
+  double coarse_step;
+  double fine_step;
+  double reach;
 
   Rigid2d
   motion (double shift) const
@@ -202,6 +208,43 @@ struct ShiftSearch
   }
 };
 
+/** Points seen through at the shifts first + k · step, k = 0 … counts.size () − 1. */
+struct ShiftGrid
+{
+  double first = 0.0;
+  double step = 0.0;
+  std::vector<int> counts;
+
+  double
+  shift (int k) const
+  {
+    return first + k * step;
+  }
+};
+
+ShiftGrid
+sampleShifts (const ShiftSearch& search, double first, double step, int samples)
+{
+  ShiftGrid grid{first, step, std::vector<int> (static_cast<std::size_t> (samples))};
+  for (int k = 0; k < samples; ++k)
+    grid.counts[k] = search.seenThrough (grid.shift (k));
+  return grid;
+}
+
+/** The run [low, high] of grid shifts around the first one with the fewest points
+ *  seen through; false when it reaches either end of the grid (not bounded there). */
+bool
+boundedFewestRun (const ShiftGrid& grid, int& low, int& high)
+{
+  const auto& counts = grid.counts;
+  low = high = static_cast<int> (std::min_element (counts.begin (), counts.end ()) - counts.begin ());
+  while (low > 0 && counts[low - 1] == counts[low])
+    --low;
+  while (high + 1 < static_cast<int> (counts.size ()) && counts[high + 1] == counts[high])
+    ++high;
+  return low > 0 && high + 1 < static_cast<int> (counts.size ());
+}
+
 /** Bisects between a shift \a inside the fewest points seen through (\a fewest) and
  *  one \a outside, to a sixteenth of their distance: the inside end. */
 double
@@ -214,40 +257,85 @@ refineEdge (const ShiftSearch& search, double inside, double outside, int fewest
   return inside;
 }
 
-/** The shift along the axis that both sensors' free space allows best: on a grid of
- *  2 overlap_radius steps within ±max_displacement, the run of shifts with the fewest
- *  points seen through, its ends refined, and \a shift its middle (slid too little,
- *  the target's end sticks out where the source saw through; too far, the source's
- *  end sticks out where the target saw through). \return false unless the run has
- *  fewer such points than the static motion (\a static_count) and ends within reach
- *  on both sides (otherwise the motion along the axis is not observed). */
+/** The grid the run is taken from: the coarse grid over ±reach, or, when the fine
+ *  step is finer, the fine grid centred on the coarse best and reaching its
+ *  neighbours if its own run is bounded there (a slide shorter than a coarse step
+ *  shows only on the fine grid; a run wider than the fine grid is the coarse one's). */
+ShiftGrid
+searchGrid (const ShiftSearch& search)
+{
+  constexpr double kMostSteps = 4096.0;  // each way: bounds the work for a huge reach
+  const int reach = static_cast<int> (std::min (std::ceil (search.reach / search.coarse_step), kMostSteps));
+  ShiftGrid coarse = sampleShifts (search, -reach * search.coarse_step, search.coarse_step, 2 * reach + 1);
+  if (!(search.fine_step < search.coarse_step))
+    return coarse;
+  const int best = static_cast<int> (std::min_element (coarse.counts.begin (), coarse.counts.end ()) -
+                                     coarse.counts.begin ());
+  const int each_way = static_cast<int> (std::ceil (search.coarse_step / search.fine_step));
+  ShiftGrid fine = sampleShifts (search, coarse.shift (best) - each_way * search.fine_step, search.fine_step,
+                                 2 * each_way + 1);
+  int low = 0, high = 0;
+  return boundedFewestRun (fine, low, high) ? fine : coarse;
+}
+
+/** The shift along the axis that both sensors' free space allows best: the run of
+ *  shifts with the fewest points seen through (searchGrid ()), its ends refined, and
+ *  \a shift its middle (slid too little, the target's end sticks out where the source
+ *  saw through; too far, the source's end sticks out where the target saw through).
+ *  \return false unless the run has fewer such points than the static motion
+ *  (\a static_count) and ends within reach on both sides (otherwise the motion along
+ *  the axis is not observed). */
 bool
 freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
 {
-  constexpr double kMostSteps = 4096.0;  // each way: bounds the work for a huge max_displacement
-  const double step = 2.0 * search.scene.parameters.overlap_radius;
-  const double steps = std::ceil (search.scene.parameters.max_displacement / step);
-  if (!(step > 0.0) || !(steps >= 1.0))
+  if (!(search.coarse_step > 0.0) || !(search.fine_step > 0.0) || !(search.reach > 0.0))
     return false;
-  const int reach = static_cast<int> (std::min (steps, kMostSteps));
-  std::vector<int> counts (static_cast<std::size_t> (2 * reach + 1));
-  for (int k = 0; k < static_cast<int> (counts.size ()); ++k)
-    counts[k] = search.seenThrough ((k - reach) * step);
-  const int best = static_cast<int> (std::min_element (counts.begin (), counts.end ()) - counts.begin ());
-  const int fewest = counts[best];
+  const ShiftGrid grid = searchGrid (search);
+  int low = 0, high = 0;
+  if (!boundedFewestRun (grid, low, high))
+    return false;
+  const int fewest = grid.counts[low];
   if (2 * fewest > static_count || static_count - fewest < 2)  // resolves at least two, and half, of them
     return false;
-  int low = best, high = best;
-  while (low > 0 && counts[low - 1] == fewest)
-    --low;
-  while (high + 1 < static_cast<int> (counts.size ()) && counts[high + 1] == fewest)
-    ++high;
-  if (low == 0 || high + 1 == static_cast<int> (counts.size ()))
-    return false;
-  const double from = refineEdge (search, (low - reach) * step, (low - 1 - reach) * step, fewest);
-  const double to = refineEdge (search, (high - reach) * step, (high + 1 - reach) * step, fewest);
+  const double from = refineEdge (search, grid.shift (low), grid.shift (low - 1), fewest);
+  const double to = refineEdge (search, grid.shift (high), grid.shift (high + 1), fewest);
   shift = 0.5 * (from + to);
   return true;
+}
+
+/** The fine grid step of the search along target segment \a segment: two of its
+ *  median overlap radii, so that the search resolves what the sensor resolves on the
+ *  segment (a 1/10-scale car half a metre away slides a few centimetres between
+ *  scans, a truck at 10 m a metre or more). */
+double
+fineShiftStep (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
+{
+  std::vector<double> radii (scene.target_radius.begin () + segment.begin, scene.target_radius.begin () + segment.end);
+  std::nth_element (radii.begin (), radii.begin () + radii.size () / 2, radii.end ());
+  return 2.0 * radii[radii.size () / 2];
+}
+
+/** The farthest shift searched: max_displacement, or less where the object and the
+ *  target segment, both projected on \a axis, no longer overlap beyond it (no shift
+ *  past that puts any of the object's points on the segment), plus one coarse step. */
+double
+shiftReach (const FreeSpaceScene& scene, const std::vector<int>& object, const matching::ScanSegment& segment,
+            const Rigid2d& T_static, const Eigen::Vector2d& axis)
+{
+  constexpr double kInfinity = std::numeric_limits<double>::infinity ();
+  double low = kInfinity, high = -kInfinity, object_low = kInfinity, object_high = -kInfinity;
+  for (int j = segment.begin; j < segment.end; ++j) {
+    const double along = axis.dot (scene.target.col (j));
+    low = std::min (low, along);
+    high = std::max (high, along);
+  }
+  for (int i : object) {
+    const double along = axis.dot (T_static * scene.source.col (i));
+    object_low = std::min (object_low, along);
+    object_high = std::max (object_high, along);
+  }
+  const double no_overlap = std::max (high - object_low, object_high - low) + 2.0 * scene.parameters.overlap_radius;
+  return std::min (scene.parameters.max_displacement, no_overlap);
 }
 
 /** The object's points join a new cluster of motion T: those it puts on target segment
@@ -318,7 +406,16 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
     const HypothesisFit as_static = fitOf (scene, object, g, T_static);
     if (as_static.seen_through < 2)  // freeSpaceShift () must resolve two
       continue;
-    const ShiftSearch search{scene, object, g, T_static, principalAxis (target, scene.target_segments[g])};
+    const matching::ScanSegment& segment = scene.target_segments[g];
+    const Eigen::Vector2d axis = principalAxis (target, segment);
+    const ShiftSearch search{scene,
+                             object,
+                             g,
+                             T_static,
+                             axis,
+                             2.0 * parameters.overlap_radius,
+                             std::min (fineShiftStep (scene, segment), 2.0 * parameters.overlap_radius),
+                             shiftReach (scene, object, segment, T_static, axis)};
     double shift = 0.0;
     if (!freeSpaceShift (search, as_static.seen_through, shift))
       continue;

@@ -14,12 +14,19 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-/** Counter-clockwise angle from a to b, in [0, 2π). */
+/** Counter-clockwise angle from a to b, in [0, 2π) (one turn added or taken away
+ *  where that suffices, as for the bearings here; fmod otherwise). */
 double
 counterClockwise (double a, double b)
 {
-  const double d = std::fmod (b - a, kTwoPi);
-  return d < 0.0 ? d + kTwoPi : d;
+  double d = b - a;
+  if (d < -kTwoPi || d >= 2.0 * kTwoPi)
+    d = std::fmod (d, kTwoPi);
+  if (d < 0.0)
+    d += kTwoPi;
+  else if (d >= kTwoPi)
+    d -= kTwoPi;
+  return d;
 }
 
 /** The median of the steps between neighbouring sorted bearings (at least two). */
@@ -66,6 +73,24 @@ startAfterWidestGap (RangeProfile& profile, Eigen::Index widest)
   }
   profile.bearings = std::move (bearings);
   profile.ranges = std::move (ranges);
+}
+
+/** The first return whose bearing is not below \a theta (m when none is), as
+ *  std::lower_bound, looked up first where evenly stepped bearings would put it. */
+Eigen::Index
+firstReturnNotBefore (const RangeProfile& profile, double theta)
+{
+  constexpr Eigen::Index kSlack = 2;  // returns either way of the guess
+  const double* bearings = profile.bearings.data ();
+  const Eigen::Index m = profile.bearings.size ();
+  const double steps = (theta - bearings[0]) / profile.step;
+  const Eigen::Index guess = steps <= 0.0 ? 0 : steps >= static_cast<double> (m) ? m : static_cast<Eigen::Index> (steps);
+  const Eigen::Index low = std::max<Eigen::Index> (guess - kSlack, 0);
+  const Eigen::Index high = std::min (guess + kSlack, m);
+  const bool bracketed = (low == 0 || bearings[low - 1] < theta) && (high == m || bearings[high] >= theta);
+  if (!bracketed)
+    return std::lower_bound (bearings, bearings + m, theta) - bearings;
+  return std::lower_bound (bearings + low, bearings + high, theta) - bearings;
 }
 
 /** The bearing of \a point moved into [first, first + 2π) of the profile. */
@@ -139,18 +164,20 @@ seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const Br
     return false;
   const double range = point.norm ();
   const double margin = range * distance.slope + distance.offset;
-  const double* begin = profile.bearings.data ();
-  const Eigen::Index after = std::lower_bound (begin, begin + m, theta) - begin;
+  const Eigen::Index after = firstReturnNotBefore (profile, theta);
   bool near_return = false;
-  for (Eigen::Index k : {after - 1, after}) {  // the returns on either side (wrapping on a full circle)
-    const Eigen::Index j = (k % m + m) % m;
-    const double apart = std::min (counterClockwise (profile.bearings (j), theta),
-                                   counterClockwise (theta, profile.bearings (j)));
-    if (apart > step)
-      continue;
-    near_return = true;
-    if (profile.ranges (j) <= range + margin)
-      return false;
+  for (const Eigen::Index direction : {Eigen::Index (-1), Eigen::Index (1)}) {  // outwards from theta
+    Eigen::Index k = direction < 0 ? after - 1 : after;
+    for (Eigen::Index visited = 0; visited < m; ++visited, k += direction) {
+      const Eigen::Index j = (k % m + m) % m;  // wrapping (near only on a full circle)
+      const double apart = std::min (counterClockwise (profile.bearings (j), theta),
+                                     counterClockwise (theta, profile.bearings (j)));
+      if (apart > step)
+        break;
+      near_return = true;
+      if (profile.ranges (j) <= range + margin)
+        return false;
+    }
   }
   return near_return || range + margin < profile.max_range;
 }

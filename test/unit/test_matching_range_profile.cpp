@@ -140,4 +140,63 @@ TEST (RangeProfile, TooFewReturnsSayNothingAndNonFinitePointsAreRejected)
   EXPECT_THROW (makeRangeProfile (bad), std::invalid_argument);
 }
 
+/** seesThrough () as its documentation defines it, by looking at every return, for a
+ *  profile whose field of view does not wrap (it is [first, last] bearing). */
+bool
+seesThroughByEveryReturn (const pcl_crf::matching::RangeProfile& profile, const Eigen::Vector2d& point,
+                          const pcl_crf::matching::BreakpointDistance& distance)
+{
+  const double theta = std::atan2 (point.y (), point.x ()), range = point.norm ();
+  const double margin = range * distance.slope + distance.offset;
+  if (theta < profile.bearings (0) || theta > profile.bearings (profile.bearings.size () - 1))
+    return false;
+  bool near_return = false;
+  for (Eigen::Index j = 0; j < profile.bearings.size (); ++j) {
+    if (std::abs (std::remainder (profile.bearings (j) - theta, 2.0 * M_PI)) > profile.step)
+      continue;
+    near_return = true;
+    if (profile.ranges (j) <= range + margin)
+      return false;
+  }
+  return near_return || range + margin < profile.max_range;
+}
+
+TEST (RangeProfile, IrregularBeamsAnswerAsEveryReturnWould)
+{
+  // A 270° scan of a wavy room whose beams drop out singly and in runs of up to 30,
+  // and a third of which have a second return half a step on (the lookup's guess
+  // from evenly stepped bearings misses either way there): seesThrough
+  // agrees with the definition over every return for points all over the field of
+  // view, at every range.
+  std::vector<Eigen::Vector2d> returns;
+  unsigned state = 12345u;
+  const auto next = [&state] () { return (state = state * 1103515245u + 12345u) >> 16; };
+  for (int k = 0; k <= 1080; ++k) {
+    if (next () % 7 == 0)
+      k += static_cast<int> (next () % 30);  // a run of dropped beams
+    const double degrees = -135.0 + 0.25 * k;
+    if (degrees > 135.0)
+      break;
+    returns.push_back (polar (degrees, 4.0 + std::sin (5.0 * degrees * kDegree)));
+    if (next () % 3 == 0)  // a second return half a step on: bearings denser than the step
+      returns.push_back (polar (degrees + 0.125, 4.5 + std::sin (5.0 * degrees * kDegree)));
+  }
+  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (returns.size ()));
+  for (std::size_t k = 0; k < returns.size (); ++k)
+    scan.col (static_cast<Eigen::Index> (k)) = returns[k];
+  const auto profile = makeRangeProfile (scan);
+  const auto distance = pcl_crf::matching::breakpointDistance (profile, kLambda, kNoise);
+  int seen_through = 0, checked = 0;
+  for (double degrees = -134.9; degrees < 134.9; degrees += 0.0731)
+    for (double range : {0.5, 3.3, 3.9, 4.6, 5.2, 6.0}) {
+      const Eigen::Vector2d point = polar (degrees, range);
+      const bool expected = seesThroughByEveryReturn (profile, point, distance);
+      ASSERT_EQ (seesThrough (profile, point, distance), expected) << degrees << "° at " << range << " m";
+      seen_through += expected ? 1 : 0;
+      ++checked;
+    }
+  EXPECT_GT (seen_through, checked / 4);  // both answers are well represented
+  EXPECT_LT (seen_through, 3 * checked / 4);
+}
+
 }  // namespace
