@@ -123,21 +123,33 @@ objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, 
   return seen_through;
 }
 
-/** Per point of \a points: the target segment T puts it on, or -1: the segment of its
- *  nearest target point when that lies within its overlap radius. */
+/** Per point of \a points: its nearest target point when T puts it within that
+ *  point's overlap radius, or -1. */
 std::vector<int>
-landingSegments (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
+landedTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
 {
-  std::vector<int> landing (points.size (), -1);
+  std::vector<int> landed (points.size (), -1);
   if (points.empty ())
-    return landing;
+    return landed;
   const KnnIndex::Result nearest = scene.target_points.search (movedPoints (scene, points, T), 1);  // one batch
   for (std::size_t k = 0; k < points.size (); ++k) {
     const auto column = static_cast<Eigen::Index> (k);
     const int j = nearest.indices (0, column);
     if (j >= 0 && nearest.squared_distances (0, column) <= scene.target_radius[j] * scene.target_radius[j])
-      landing[k] = scene.target_segment_of[j];
+      landed[k] = j;
   }
+  return landed;
+}
+
+/** Per point of \a points: the target segment T puts it on (that of its
+ *  landedTargetPoints ()), or -1. */
+std::vector<int>
+landingSegments (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
+{
+  std::vector<int> landing = landedTargetPoints (scene, points, T);
+  for (int& j : landing)
+    if (j >= 0)
+      j = scene.target_segment_of[j];
   return landing;
 }
 
@@ -170,14 +182,37 @@ objectOnSegment (const FreeSpaceScene& scene, int segment, const std::vector<int
   return object;
 }
 
-/** The unit direction along which the target segment extends most (its principal axis). */
+/** The unit direction along which the target points \a points extend most (their
+ *  principal axis). */
 Eigen::Vector2d
-principalAxis (const Eigen::Matrix2Xd& target, const matching::ScanSegment& segment)
+principalAxis (const Eigen::Matrix2Xd& points)
 {
-  const auto points = target.middleCols (segment.begin, segment.size ());
   const Eigen::Matrix2Xd centred = points.colwise () - points.rowwise ().mean ();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver (centred * centred.transpose ());
   return solver.eigenvectors ().col (1);  // eigenvalues increase
+}
+
+/** The axis the object slides along: the principal axis of the points of target
+ *  segment \a segment the static motion puts the object's points on (of the whole
+ *  segment when fewer than two), so that the few points of another surface the segment
+ *  runs on into (a wall behind a car's end, within the breakpoint distance) do not
+ *  tilt it. */
+Eigen::Vector2d
+slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T_static)
+{
+  std::vector<int> overlapped;
+  for (int j : landedTargetPoints (scene, object, T_static))
+    if (j >= 0 && scene.target_segment_of[j] == segment)
+      overlapped.push_back (j);
+  std::sort (overlapped.begin (), overlapped.end ());
+  overlapped.erase (std::unique (overlapped.begin (), overlapped.end ()), overlapped.end ());
+  const matching::ScanSegment& whole = scene.target_segments[segment];
+  if (overlapped.size () < 2)
+    return principalAxis (scene.target.middleCols (whole.begin, whole.size ()));
+  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (overlapped.size ()));
+  for (std::size_t k = 0; k < overlapped.size (); ++k)
+    points.col (static_cast<Eigen::Index> (k)) = scene.target.col (overlapped[k]);
+  return principalAxis (points);
 }
 
 /** The object's motions searched: T_static slid along the target segment's axis
@@ -407,7 +442,7 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
     if (as_static.seen_through < 2)  // freeSpaceShift () must resolve two
       continue;
     const matching::ScanSegment& segment = scene.target_segments[g];
-    const Eigen::Vector2d axis = principalAxis (target, segment);
+    const Eigen::Vector2d axis = slideAxis (scene, object, g, T_static);
     const ShiftSearch search{scene,
                              object,
                              g,

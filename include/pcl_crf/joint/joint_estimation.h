@@ -185,16 +185,17 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
  *  by the static motion, lie where the source saw through (matching::seesThrough ()),
  *  the candidate object is every static or outlier source point on the source segments
  *  the static motion puts on that target segment (nearest target point on it, within its
- *  overlap radius). Its motion
- *  slides the static motion along the target segment's principal axis: on a grid of
- *  2 overlap_radius steps within ±max_displacement (or less, where the object and the
- *  segment no longer overlap along the axis), then on a grid of the segment's own two
- *  overlap radii (overlapRadius () of its point spacing) around the best of those, the
- *  run of shifts with the fewest points either sensor saw through (target points moved
- *  back, object points moved forward) is found, its ends refined by bisection, and its
- *  middle taken (the fine grid's run when it ends within the fine grid: a 1/10-scale
- *  car slides a few centimetres, a truck at 10 m a metre or more; slid too
- *  little, the target's end sticks out where the source saw through; too far, the
+ *  overlap radius). Its motion slides the static motion along the principal axis of
+ *  the target points the static motion puts the object on (not of the points of
+ *  another surface the segment runs on into): on a grid of 2 overlap_radius steps
+ *  within ±max_displacement (or less, where the object and the segment no longer
+ *  overlap along the axis), then on a grid of the segment's own two overlap radii
+ *  (overlapRadius () of its point spacing) around the best of those, the run of shifts
+ *  with the fewest points either sensor saw through (target points moved back, object
+ *  points moved forward) is found, its ends refined by bisection, and its middle taken
+ *  (the fine grid's run when it ends within the fine grid: a 1/10-scale car slides a
+ *  few centimetres, a truck at 10 m a metre or more; slid too little, the target's end
+ *  sticks out where the source saw through; too far, the
  *  source's end sticks out where the target saw through). The object becomes a new
  *  cluster when that run ends within reach on both sides (the slide is observed),
  *  resolves at least two and at least half of the static motion's points seen through
