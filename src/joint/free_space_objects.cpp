@@ -92,14 +92,6 @@ movedPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const 
   return moved;
 }
 
-/** How well a motion hypothesis of a candidate object fits: its source points that
- *  land on the target segment, and the points either sensor saw through. */
-struct HypothesisFit
-{
-  int explained = 0;
-  int seen_through = 0;
-};
-
 /** The target points of \a segment the source saw through when moved back by T⁻¹
  *  (T_target_source): under T they were not there, so they moved in. */
 int
@@ -153,28 +145,55 @@ landingSegments (const FreeSpaceScene& scene, const std::vector<int>& points, co
   return landing;
 }
 
-/** The fit of T for the object's source points \a object and its target segment. */
-HypothesisFit
-fitOf (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T)
+/** How many of the object's source points \a object T puts on target segment \a segment. */
+int
+explainedBy (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T)
 {
-  HypothesisFit fit;
-  fit.seen_through = segmentSeenThrough (scene, scene.target_segments[segment], T) + objectSeenThrough (scene, object, T);
-  for (int landed : landingSegments (scene, object, T))
-    fit.explained += landed == segment ? 1 : 0;
-  return fit;
+  const std::vector<int> landing = landingSegments (scene, object, T);
+  return static_cast<int> (std::count (landing.begin (), landing.end (), segment));
+}
+
+/** The target segment of target point \a j, or -1 for none (j = -1). */
+int
+segmentOfTarget (const FreeSpaceScene& scene, int j)
+{
+  return j >= 0 ? scene.target_segment_of[j] : -1;
+}
+
+/** Per source point: for the points of \a free, their landedTargetPoints () under the
+ *  static motion (one batched query for all candidate objects); -1 for the others. */
+std::vector<int>
+staticTargets (const FreeSpaceScene& scene, const std::vector<int>& free, const Rigid2d& T_static)
+{
+  std::vector<int> target_of (static_cast<std::size_t> (scene.source.cols ()), -1);
+  const std::vector<int> landed = landedTargetPoints (scene, free, T_static);
+  for (std::size_t k = 0; k < free.size (); ++k)
+    target_of[free[k]] = landed[k];
+  return target_of;
+}
+
+/** explainedBy () of the static motion, from where it puts the object's points
+ *  (\a static_target, staticTargets ()). */
+int
+explainedByStatic (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
+                   const std::vector<int>& static_target)
+{
+  return static_cast<int> (std::count_if (object.begin (), object.end (), [&] (int i) {
+    return segmentOfTarget (scene, static_target[i]) == segment;
+  }));
 }
 
 /** The candidate object of target segment \a segment: the points of \a free (static
- *  or unclustered; \a landing, their landingSegments () under the static motion) on
- *  the source segments of those the static motion puts on it. */
+ *  or unclustered) on the source segments of those the static motion puts on it
+ *  (\a static_target, staticTargets ()). */
 std::vector<int>
 objectOnSegment (const FreeSpaceScene& scene, int segment, const std::vector<int>& free,
-                 const std::vector<int>& landing)
+                 const std::vector<int>& static_target)
 {
   std::vector<bool> on_segment (scene.source_segments.size (), false);
-  for (std::size_t k = 0; k < free.size (); ++k)
-    if (landing[k] == segment && scene.source_segment_of[free[k]] >= 0)
-      on_segment[scene.source_segment_of[free[k]]] = true;
+  for (int i : free)
+    if (segmentOfTarget (scene, static_target[i]) == segment && scene.source_segment_of[i] >= 0)
+      on_segment[scene.source_segment_of[i]] = true;
   std::vector<int> object;
   for (int i : free)
     if (scene.source_segment_of[i] >= 0 && on_segment[scene.source_segment_of[i]])
@@ -193,17 +212,18 @@ principalAxis (const Eigen::Matrix2Xd& points)
 }
 
 /** The axis the object slides along: the principal axis of the points of target
- *  segment \a segment the static motion puts the object's points on (of the whole
- *  segment when fewer than two), so that the few points of another surface the segment
- *  runs on into (a wall behind a car's end, within the breakpoint distance) do not
- *  tilt it. */
+ *  segment \a segment the static motion puts the object's points on (\a static_target,
+ *  staticTargets (); the whole segment's when fewer than two), so that the few points
+ *  of another surface the segment runs on into (a wall behind a car's end, within the
+ *  breakpoint distance) do not tilt it. */
 Eigen::Vector2d
-slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T_static)
+slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
+           const std::vector<int>& static_target)
 {
   std::vector<int> overlapped;
-  for (int j : landedTargetPoints (scene, object, T_static))
-    if (j >= 0 && scene.target_segment_of[j] == segment)
-      overlapped.push_back (j);
+  for (int i : object)
+    if (segmentOfTarget (scene, static_target[i]) == segment)
+      overlapped.push_back (static_target[i]);
   std::sort (overlapped.begin (), overlapped.end ());
   overlapped.erase (std::unique (overlapped.begin (), overlapped.end ()), overlapped.end ());
   const matching::ScanSegment& whole = scene.target_segments[segment];
@@ -418,44 +438,49 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
     return 0;
   FreeSpaceScene scene = makeScene (source, target, parameters);
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  std::vector<int> moved_in;  // target segments with points the source saw through
+  // The target segments with points the source saw through under the static motion, and how many.
+  std::vector<int> moved_in;
+  std::vector<int> static_seen_through (scene.target_segments.size (), 0);
   for (int g = 0; g < static_cast<int> (scene.target_segments.size ()); ++g) {
     const matching::ScanSegment& segment = scene.target_segments[g];
-    if (segment.size () >= parameters.min_segment_points && segmentSeenThrough (scene, segment, T_static) > 0)
+    if (segment.size () >= parameters.min_segment_points)
+      static_seen_through[g] = segmentSeenThrough (scene, segment, T_static);
+    if (static_seen_through[g] > 0)
       moved_in.push_back (g);
   }
   if (moved_in.empty ())
     return 0;
   completeScene (scene);
   const std::vector<int> free = freePoints (result);
-  const std::vector<int> landing = landingSegments (scene, free, T_static);
+  const std::vector<int> static_target = staticTargets (scene, free, T_static);
   int added = 0;
   for (int g : moved_in) {
-    std::vector<int> object = objectOnSegment (scene, g, free, landing);
+    std::vector<int> object = objectOnSegment (scene, g, free, static_target);
     object.erase (std::remove_if (object.begin (), object.end (),
                                   [&] (int i) { return result.source_cluster[i] != result.static_cluster &&
                                                        result.source_cluster[i] != kOutlierCluster; }),
                   object.end ());  // points an earlier segment's object took
     if (static_cast<int> (object.size ()) < parameters.min_segment_points)
       continue;
-    const HypothesisFit as_static = fitOf (scene, object, g, T_static);
-    if (as_static.seen_through < 2)  // freeSpaceShift () must resolve two
+    const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
+    if (seen_through < 2)  // freeSpaceShift () must resolve two
       continue;
     const matching::ScanSegment& segment = scene.target_segments[g];
-    const Eigen::Vector2d axis = slideAxis (scene, object, g, T_static);
+    const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
+    const double coarse_step = 2.0 * parameters.overlap_radius;
     const ShiftSearch search{scene,
                              object,
                              g,
                              T_static,
                              axis,
-                             2.0 * parameters.overlap_radius,
-                             std::min (fineShiftStep (scene, segment), 2.0 * parameters.overlap_radius),
+                             coarse_step,
+                             std::min (fineShiftStep (scene, segment), coarse_step),
                              shiftReach (scene, object, segment, T_static, axis)};
     double shift = 0.0;
-    if (!freeSpaceShift (search, as_static.seen_through, shift))
+    if (!freeSpaceShift (search, seen_through, shift))
       continue;
     const Rigid2d T_moved = search.motion (shift);
-    if (fitOf (scene, object, g, T_moved).explained < as_static.explained)
+    if (explainedBy (scene, object, g, T_moved) < explainedByStatic (scene, object, g, static_target))
       continue;
     addCluster (scene, object, g, T_moved, result);
     ++added;
