@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_crf {
@@ -237,7 +238,8 @@ slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segm
 
 /** The object's motions searched: T_static slid along the target segment's axis
  *  within ±\a reach, first on a grid of \a coarse_step, then around its best shift on
- *  a grid of \a fine_step (≤ coarse_step). */
+ *  a grid of \a fine_step (≤ coarse_step), then between its grid shifts down to
+ *  \a finest_step (the segment's point spacing; refineNarrowRun ()). */
 struct ShiftSearch
 {
   const FreeSpaceScene& scene;
@@ -247,6 +249,7 @@ struct ShiftSearch
   Eigen::Vector2d axis;
   double coarse_step;
   double fine_step;
+  double finest_step;
   double reach;
 
   Rigid2d
@@ -333,8 +336,51 @@ searchGrid (const ShiftSearch& search)
   return boundedFewestRun (fine, low, high) ? fine : coarse;
 }
 
+/** A shift between the grid shifts of a narrow fewest run [\a low, \a high] (one
+ *  shift, or two equal ones) with fewer points seen through than the run: a slide
+ *  between two grid shifts shows its fewest points only there. Found by bisection:
+ *  the middle of a two-shift run first, then towards the better side of the best
+ *  shift so far, a half grid step (a quarter for two) first, while the step stays no
+ *  finer than search.finest_step (the sensor resolves no finer on the segment) nor
+ *  than a sixteenth of the grid step (refineEdge ()'s resolution).
+ *  \return false when the run is wider or no such shift is found. */
+bool
+refineNarrowRun (const ShiftSearch& search, const ShiftGrid& grid, int low, int high, double& shift, int& fewest)
+{
+  const int run = grid.counts[low];
+  if (high - low > 1)  // a wider run: the grid resolves it
+    return false;
+  const auto resolved = [&] (double half) { return half >= search.finest_step && half >= grid.step / 16.0; };
+  double centre = grid.shift (low), half = 0.5 * grid.step;
+  int least = run;
+  if (high > low) {  // two equal shifts: their middle
+    if (!resolved (half))
+      return false;
+    centre += half;
+    least = search.seenThrough (centre);
+    half *= 0.5;
+  }
+  for (; resolved (half); half *= 0.5) {
+    const int below = search.seenThrough (centre - half), above = search.seenThrough (centre + half);
+    if (below < least && below <= above) {
+      centre -= half;
+      least = below;
+    }
+    else if (above < least) {
+      centre += half;
+      least = above;
+    }
+  }
+  if (least >= run)
+    return false;
+  shift = centre;
+  fewest = least;
+  return true;
+}
+
 /** The shift along the axis that both sensors' free space allows best: the run of
- *  shifts with the fewest points seen through (searchGrid ()), its ends refined, and
+ *  shifts with the fewest points seen through (searchGrid (); a narrow one refined by
+ *  refineNarrowRun ()), its ends refined, and
  *  \a shift its middle (slid too little, the target's end sticks out where the source
  *  saw through; too far, the source's end sticks out where the target saw through).
  *  \return false unless the run has fewer such points than the static motion
@@ -349,13 +395,30 @@ freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
   int low = 0, high = 0;
   if (!boundedFewestRun (grid, low, high))
     return false;
-  const int fewest = grid.counts[low];
+  double inside_low = grid.shift (low), inside_high = grid.shift (high);
+  double outside_low = grid.shift (low - 1), outside_high = grid.shift (high + 1);
+  int fewest = grid.counts[low];
+  double refined = 0.0;
+  if (refineNarrowRun (search, grid, low, high, refined, fewest)) {
+    // Every grid shift sees more: the refined shift's neighbours on the grid lie outside.
+    inside_low = inside_high = refined;
+    outside_low = grid.shift (static_cast<int> (std::floor ((refined - grid.first) / grid.step)));
+    outside_high = outside_low + grid.step;
+  }
   if (2 * fewest > static_count || static_count - fewest < 2)  // resolves at least two, and half, of them
     return false;
-  const double from = refineEdge (search, grid.shift (low), grid.shift (low - 1), fewest);
-  const double to = refineEdge (search, grid.shift (high), grid.shift (high + 1), fewest);
+  const double from = refineEdge (search, inside_low, outside_low, fewest);
+  const double to = refineEdge (search, inside_high, outside_high, fewest);
   shift = 0.5 * (from + to);
   return true;
+}
+
+/** The upper median of \a values (not empty). */
+double
+median (std::vector<double> values)
+{
+  std::nth_element (values.begin (), values.begin () + values.size () / 2, values.end ());
+  return values[values.size () / 2];
 }
 
 /** The fine grid step of the search along target segment \a segment: two of its
@@ -365,9 +428,18 @@ freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
 double
 fineShiftStep (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
 {
-  std::vector<double> radii (scene.target_radius.begin () + segment.begin, scene.target_radius.begin () + segment.end);
-  std::nth_element (radii.begin (), radii.begin () + radii.size () / 2, radii.end ());
-  return 2.0 * radii[radii.size () / 2];
+  return 2.0 * median (std::vector<double> (scene.target_radius.begin () + segment.begin,
+                                            scene.target_radius.begin () + segment.end));
+}
+
+/** The median spacing of the points of target \a segment (pointSpacing ()). */
+double
+medianSpacing (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
+{
+  std::vector<double> spacings;
+  for (int j = segment.begin; j < segment.end; ++j)
+    spacings.push_back (matching::pointSpacing (scene.target, j, segment.begin, segment.end));
+  return median (std::move (spacings));
 }
 
 /** The farthest shift searched: max_displacement, or less where the object and the
@@ -475,6 +547,7 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
                              axis,
                              coarse_step,
                              std::min (fineShiftStep (scene, segment), coarse_step),
+                             medianSpacing (scene, segment),
                              shiftReach (scene, object, segment, T_static, axis)};
     double shift = 0.0;
     if (!freeSpaceShift (search, seen_through, shift))
