@@ -12,7 +12,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace pcl_crf {
@@ -36,6 +35,7 @@ struct FreeSpaceScene
   std::vector<int> source_segment_of;  // per source point: its segment
   std::vector<matching::ScanSegment> target_segments;
   std::vector<int> target_segment_of;  // per target point: its segment
+  std::vector<double> target_spacing;  // per target point: its pointSpacing () on its segment
   std::vector<double> target_radius;   // per target point: its overlap radius on its segment
   KnnIndex target_points;
 };
@@ -58,7 +58,7 @@ makeScene (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
 {
   const double angle = parameters.breakpoint_angle, noise = parameters.range_noise;
   FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source), {}, {}, {}, {}, {}, {}, {},
-                       {}, {}};
+                       {}, {}, {}};
   scene.source_breakpoint = matching::breakpointDistance (scene.source_view, angle, noise);
   scene.target_segments = matching::segmentScan (target, angle, noise);
   return scene;
@@ -75,11 +75,13 @@ completeScene (FreeSpaceScene& scene)
   scene.source_segments = matching::segmentScan (scene.source, parameters.breakpoint_angle, parameters.range_noise);
   scene.source_segment_of = segmentOfPoints (scene.source_segments, scene.source.cols ());
   scene.target_segment_of = segmentOfPoints (scene.target_segments, scene.target.cols ());
+  scene.target_spacing.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   scene.target_radius.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   for (const matching::ScanSegment& segment : scene.target_segments)
-    for (int j = segment.begin; j < segment.end; ++j)
-      scene.target_radius[j] =
-          matching::overlapRadius (parameters, matching::pointSpacing (scene.target, j, segment.begin, segment.end));
+    for (int j = segment.begin; j < segment.end; ++j) {
+      scene.target_spacing[j] = matching::pointSpacing (scene.target, j, segment.begin, segment.end);
+      scene.target_radius[j] = matching::overlapRadius (parameters, scene.target_spacing[j]);
+    }
   scene.target_points.build (scene.target);
 }
 
@@ -436,10 +438,8 @@ fineShiftStep (const FreeSpaceScene& scene, const matching::ScanSegment& segment
 double
 medianSpacing (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
 {
-  std::vector<double> spacings;
-  for (int j = segment.begin; j < segment.end; ++j)
-    spacings.push_back (matching::pointSpacing (scene.target, j, segment.begin, segment.end));
-  return median (std::move (spacings));
+  return median (std::vector<double> (scene.target_spacing.begin () + segment.begin,
+                                      scene.target_spacing.begin () + segment.end));
 }
 
 /** The farthest shift searched: max_displacement, or less where the object and the

@@ -86,6 +86,24 @@ clusterOfMarkedAlone (const JointResult& result, const std::vector<bool>& marked
   return cluster;
 }
 
+/** The cluster separateObjectsInFreeSpace () (default parameters) gives the marked
+ *  source points, starting from allStatic (); \a result receives its output. Checks
+ *  that it added one cluster, holding the marked points alone, other than the static
+ *  world's; -1 when a check failed (reported). */
+int
+separatedCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<bool>& marked,
+                  JointResult& result)
+{
+  result = allStatic (source, target);
+  const int added = separateObjectsInFreeSpace (source, target, {}, result);
+  EXPECT_EQ (added, 1);
+  if (added != 1)
+    return -1;
+  const int cluster = clusterOfMarkedAlone (result, marked);
+  EXPECT_NE (cluster, result.static_cluster);
+  return cluster == result.static_cluster ? -1 : cluster;
+}
+
 TEST (JointFreeSpaceObjects, ATruckSlidingAlongItselfGetsItsOwnCluster)
 {
   // The truck drives 1.5 m forward (rear −4 m → −2.5 m) while the sensor stands. Its
@@ -94,13 +112,10 @@ TEST (JointFreeSpaceObjects, ATruckSlidingAlongItselfGetsItsOwnCluster)
   std::vector<bool> source_truck, target_truck;
   const Eigen::Matrix2Xd source = street (-4.0, source_truck);
   const Eigen::Matrix2Xd target = street (-2.5, target_truck);
-  JointResult result = allStatic (source, target);
-  const pcl_crf::matching::SegmentMotionParameters parameters;
-  ASSERT_EQ (separateObjectsInFreeSpace (source, target, parameters, result), 1);
-  ASSERT_EQ (result.cluster_motions.size (), 2u);
-  const int truck_cluster = clusterOfMarkedAlone (result, source_truck);
+  JointResult result;
+  const int truck_cluster = separatedCluster (source, target, source_truck, result);
   ASSERT_GE (truck_cluster, 0);
-  EXPECT_NE (truck_cluster, result.static_cluster);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
   // Measured: 1.53 m. The free space bounds the slide from both sides to within the
   // beams' spacing along the side at the front end (0.18 m at 18.4° in the source,
   // 0.26 m at 14.9° in the target).
@@ -127,12 +142,9 @@ TEST (JointFreeSpaceObjects, AOneTenthScaleCarSlidingAFewCentimetresGetsItsOwnCl
   std::vector<bool> source_car, target_car;
   const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
   const Eigen::Matrix2Xd target = street (-1.2, target_car, 0.1, 4.4, kDegree);
-  JointResult result = allStatic (source, target);
-  const pcl_crf::matching::SegmentMotionParameters parameters;
-  ASSERT_EQ (separateObjectsInFreeSpace (source, target, parameters, result), 1);
-  const int car_cluster = clusterOfMarkedAlone (result, source_car);
+  JointResult result;
+  const int car_cluster = separatedCluster (source, target, source_car, result);
   ASSERT_GE (car_cluster, 0);
-  EXPECT_NE (car_cluster, result.static_cluster);
   // Measured: 0.069 m (the spacing along the side at the car's front end is 1.3 cm).
   const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
   EXPECT_NEAR (T.translation ().x (), 0.08, 0.02);
@@ -151,11 +163,9 @@ TEST (JointFreeSpaceObjects, ACarSlidingBetweenTwoFineGridShiftsIsFoundByBisecti
     std::vector<bool> source_car, target_car;
     const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
     const Eigen::Matrix2Xd target = street (-2.0 + 10.0 * slide, target_car, 0.1, 4.4, kDegree);
-    JointResult result = allStatic (source, target);
-    ASSERT_EQ (separateObjectsInFreeSpace (source, target, {}, result), 1);
-    const int car_cluster = clusterOfMarkedAlone (result, source_car);
+    JointResult result;
+    const int car_cluster = separatedCluster (source, target, source_car, result);
     ASSERT_GE (car_cluster, 0);
-    EXPECT_NE (car_cluster, result.static_cluster);
     const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
     EXPECT_NEAR (T.translation ().x (), slide, 0.005);
     EXPECT_NEAR (T.translation ().y (), 0.0, 1e-9);

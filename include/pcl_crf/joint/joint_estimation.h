@@ -192,7 +192,9 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
  *  overlap along the axis), then on a grid of the segment's own two overlap radii
  *  (overlapRadius () of its point spacing) around the best of those, the run of shifts
  *  with the fewest points either sensor saw through (target points moved back, object
- *  points moved forward) is found, its ends refined by bisection, and its middle taken
+ *  points moved forward) is found (a run of one or two grid shifts first bisected
+ *  towards fewer between them, no finer than the segment's point spacing: a slide
+ *  between two grid shifts), its ends refined by bisection, and its middle taken
  *  (the fine grid's run when it ends within the fine grid: a 1/10-scale car slides a
  *  few centimetres, a truck at 10 m a metre or more; slid too little, the target's end
  *  sticks out where the source saw through; too far, the
