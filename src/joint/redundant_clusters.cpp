@@ -26,8 +26,8 @@ staticWorldTargets (const Eigen::Matrix2Xd& target, const JointResult& result)
   return index;
 }
 
-/** Per cluster: true when it has matched points and every one of their target points
- *  lies within its overlap radius of a target point in \a claimed. */
+/** Per cluster: true when it has matched points and most of them (more than half)
+ *  landed within their target point's overlap radius of a target point in \a claimed. */
 std::vector<bool>
 explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotionParameters& parameters,
                    const KnnIndex& claimed, const JointResult& result)
@@ -55,7 +55,7 @@ explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotion
       ++unexplained[l];
   }
   for (int l = 0; l < clusters; ++l)
-    explained[l] = matched[l] > 0 && unexplained[l] == 0;
+    explained[l] = matched[l] > 0 && 2 * unexplained[l] < matched[l];  // a majority
   return explained;
 }
 

@@ -34,8 +34,9 @@ addPoints (JointResult& result, int cluster, int first, int count)
 }
 
 /** The static world (cluster 0) matched to target points 0–79; cluster 1 to 10–19 (all
- *  of them the static world's); cluster 2 to 90–99 (none); cluster 3 to 78–81 (two the
- *  static world's, 80 and 81 within 0.15 m of 79 but not 81: 0.2 m away); one outlier. */
+ *  of them the static world's); cluster 2 to 90–99 (none); cluster 3 to 79–82 (half of
+ *  them explained: 79 the static world's, 80 within 0.15 m of it, 81 and 82 0.2 m and
+ *  0.3 m away); one outlier. */
 JointResult
 wallResult ()
 {
@@ -45,7 +46,7 @@ wallResult ()
   addPoints (result, 0, 0, 80);
   addPoints (result, 1, 10, 10);
   addPoints (result, 2, 90, 10);
-  addPoints (result, 3, 78, 4);
+  addPoints (result, 3, 79, 4);
   result.source_cluster.push_back (kOutlierCluster);
   result.source_match.push_back (kNoMatch);
   result.cluster_sizes = {80, 10, 10, 4};
@@ -78,7 +79,8 @@ TEST (JointRedundantClusters, AClusterOnTargetPointsTheStaticWorldExplainsBecome
 TEST (JointRedundantClusters, TheRadiusFollowsTheTargetSpacing)
 {
   // With a 0.25 m metric radius, target point 81 (0.2 m from the static world's 79) is
-  // explained too, so cluster 3 goes as well; cluster 2 (1.1 m away) stays.
+  // explained too, three of cluster 3's four, so it goes as well; cluster 2 (1.1 m
+  // away) stays.
   pcl_crf::matching::SegmentMotionParameters parameters;
   parameters.overlap_spacings = 0.0;
   parameters.overlap_radius = 0.25;
@@ -86,6 +88,30 @@ TEST (JointRedundantClusters, TheRadiusFollowsTheTargetSpacing)
   EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, result), 2);
   EXPECT_EQ (result.cluster_sizes, (std::vector<int>{80, 10}));
   EXPECT_EQ (result.source_match[90], 90);
+}
+
+TEST (JointRedundantClusters, AClusterMostlyOnTargetPointsTheStaticWorldExplainsGoes)
+{
+  // A car piece of 10 points: 6 matched to the static world's target points 70–75, 4 to
+  // 90–93, beyond its reach (1.4 m away): most of it repeats the static world.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result;
+  result.cluster_motions.assign (3, pcl_crf::Rigid2d::Identity ());
+  result.static_cluster = 0;
+  addPoints (result, 0, 0, 80);
+  addPoints (result, 1, 70, 6);
+  addPoints (result, 1, 90, 4);
+  addPoints (result, 2, 72, 5);  // 5 of 10 explained: half is no majority, it stays
+  addPoints (result, 2, 95, 5);
+  result.cluster_sizes = {80, 10, 10};
+  EXPECT_EQ (removeClustersTheStaticWorldExplains (wall (), parameters, result), 1);
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{80, 10}));
+  for (int i = 80; i < 90; ++i) {
+    EXPECT_EQ (result.source_cluster[i], kOutlierCluster);
+    EXPECT_EQ (result.source_match[i], kNoMatch);
+  }
+  EXPECT_EQ (result.source_cluster[90], 1);
+  EXPECT_EQ (result.source_match[95], 95);
 }
 
 TEST (JointRedundantClusters, LeavesResultsWithoutAStaticWorldOrMatchesAlone)

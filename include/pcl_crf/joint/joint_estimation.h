@@ -125,7 +125,7 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  robustly again: the ladder's hard refits let clusters whose motions differ by
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
- *  Last, clusters whose matches only repeat target points the static world explains
+ *  Last, clusters whose matches mostly repeat target points the static world explains
  *  are removed (removeClustersTheStaticWorldExplains ()), and objects the static
  *  motion puts where the source saw through get clusters of their own
  *  (separateObjectsInFreeSpace ()).
@@ -158,13 +158,15 @@ associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& ta
                               const std::vector<int>& points, const std::vector<int>& cluster,
                               const std::vector<Rigid2d>& motions, std::vector<int>& source_match);
 
-/** \brief Removes every cluster but the static world whose matched points all landed on
- *  target points the static world already explains: each lies within the overlap radius
- *  (matching::overlapRadius () of its spacing on the target scan) of a target point a
- *  static-world point is matched to. Such a cluster explains no target point of its own
- *  (typically a stretch of façade that left the view, matched to the façade further on
- *  under a motion that slides it along itself), so it is no evidence of a mover: its
- *  points become outliers (kNoMatch, kOutlierCluster). The other clusters keep their
+/** \brief Removes every cluster but the static world most of whose matched points (more
+ *  than half) landed on target points the static world already explains: each lies
+ *  within the overlap radius (matching::overlapRadius () of its spacing on the target
+ *  scan) of a target point a static-world point is matched to. Such a cluster mostly
+ *  repeats surfaces the static world accounts for (typically a stretch of façade that
+ *  left the view, matched to the façade further on under a motion that slides it along
+ *  itself, or a piece of a car whose other points the static world holds), so it is no
+ *  evidence of a mover of its own: its points become outliers (kNoMatch,
+ *  kOutlierCluster), free for separateObjectsInFreeSpace () to take. The other clusters keep their
  *  order; clusters without a matched point, or a result without a static world, stay.
  *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] parameters the overlap radius (the matcher's segment parameters)

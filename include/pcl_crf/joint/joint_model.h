@@ -31,7 +31,7 @@ struct JointParameters
    *  eq. 8, on the clustering chain's beliefs) exceeds this is merged into the others;
    *  > 1, default 1.7. */
   double max_average_neff = 1.7;
-  /** true (default): clusters whose matches only repeat target points the static world
+  /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;
   /** true (default): objects the static motion puts where the source saw through get a
