@@ -33,6 +33,18 @@ addPoints (JointResult& result, int cluster, int first, int count)
   }
 }
 
+/** \a clusters clusters of identity motion, the static world (cluster 0) with 80 points
+ *  matched to target points 0–79. */
+JointResult
+staticWorldOnWall (int clusters)
+{
+  JointResult result;
+  result.cluster_motions.assign (static_cast<std::size_t> (clusters), pcl_crf::Rigid2d::Identity ());
+  result.static_cluster = 0;
+  addPoints (result, 0, 0, 80);
+  return result;
+}
+
 /** The static world (cluster 0) matched to target points 0–79; cluster 1 to 10–19 (all
  *  of them the static world's); cluster 2 to 90–99 (none); cluster 3 to 79–82 (half of
  *  them explained: 79 the static world's, 80 within 0.15 m of it, 81 and 82 0.2 m and
@@ -40,10 +52,7 @@ addPoints (JointResult& result, int cluster, int first, int count)
 JointResult
 wallResult ()
 {
-  JointResult result;
-  result.cluster_motions.assign (4, pcl_crf::Rigid2d::Identity ());
-  result.static_cluster = 0;
-  addPoints (result, 0, 0, 80);
+  JointResult result = staticWorldOnWall (4);
   addPoints (result, 1, 10, 10);
   addPoints (result, 2, 90, 10);
   addPoints (result, 3, 79, 4);
@@ -95,10 +104,7 @@ TEST (JointRedundantClusters, AClusterMostlyOnTargetPointsTheStaticWorldExplains
   // A car piece of 10 points: 6 matched to the static world's target points 70–75, 4 to
   // 90–93, beyond its reach (1.4 m away): most of it repeats the static world.
   const pcl_crf::matching::SegmentMotionParameters parameters;
-  JointResult result;
-  result.cluster_motions.assign (3, pcl_crf::Rigid2d::Identity ());
-  result.static_cluster = 0;
-  addPoints (result, 0, 0, 80);
+  JointResult result = staticWorldOnWall (3);
   addPoints (result, 1, 70, 6);
   addPoints (result, 1, 90, 4);
   addPoints (result, 2, 72, 5);  // 5 of 10 explained: half is no majority, it stays
