@@ -40,6 +40,7 @@ struct RunArguments
   long start = 0;
   long max_pairs = 0;
   bool quiet = false;
+  bool stationary = false;  // the reference ego motion of every pair is the identity
   pcl_crf::apps::LogArguments log_args;
 };
 
@@ -62,6 +63,10 @@ printHelp (const char* program)
   print_info ("  --max-pairs N          stop after N pairs (default: 0 = all); pairs are\n"
               "                         (K, K+step), (K+step, K+2*step), ...\n");
   pcl_crf::apps::printLogOptionsHelp ();
+  print_info (" Reference:\n");
+  print_info ("  --stationary           the sensor did not move: every pair's reference ego motion is\n"
+              "                         the identity (for a log without reference poses from a robot\n"
+              "                         standing still; default: off, the log's reference poses)\n");
   print_info (" Output:\n");
   print_info ("  -o DIR                 write DIR/<pair>/prediction.pcd + prediction.txt (see data/README.md)\n"
               "                         and DIR/ego_motion.csv, one row per pair (default: none)\n");
@@ -94,6 +99,7 @@ parseArguments (int argc, char** argv, RunArguments& args)
   parse_argument (argc, argv, "--csv", args.csv);
   parse_argument (argc, argv, "--save-pairs", args.save_pairs);
   args.quiet = find_switch (argc, argv, "-q");
+  args.stationary = find_switch (argc, argv, "--stationary");
   if (!pcl_crf::apps::countOption (argc, argv, "--start", args.start, 0) ||
       !pcl_crf::apps::countOption (argc, argv, "--max-pairs", args.max_pairs, 0) ||
       !pcl_crf::apps::parseLogArguments (argc, argv, args.log_args))
@@ -237,7 +243,7 @@ printSummary (const RunArguments& args, std::size_t pairs, std::size_t skipped, 
     print_value ("%.5f", ErrorStats::median (s.rotation));
     print_info (" rad\n");
   };
-  print_highlight ("Ego motion vs the reference poses (");
+  print_highlight (args.stationary ? "Ego motion vs the identity (" : "Ego motion vs the reference poses (");
   print_value ("%zu", method.translation.size ());
   print_info (" pairs):\n");
   row (args.method.c_str (), method);
@@ -259,6 +265,9 @@ run (const RunArguments& args)
     print_info (" ms (reference poses: %s, odometry: %s)\n", log.has_reference_poses ? "yes" : "no",
                 log.has_odometry ? "yes" : "no");
   }
+  if (args.stationary && log.has_reference_poses)
+    throw std::invalid_argument ("--stationary makes the identity every pair's reference ego motion, but " + args.log +
+                                 " has reference poses: give one or the other");
   const pcl_crf::LogPairOptions& pair_options = args.log_args.pairs;
   if (pair_options.label_points && !log.has_reference_poses)
     throw std::invalid_argument ("--label and --save-pairs need reference poses, and " + args.log +
@@ -308,8 +317,8 @@ run (const RunArguments& args)
       continue;
     }
     predict_seconds += prediction.seconds;
-    pcl_crf::Rigid2d reference;
-    const bool has_reference = pcl_crf::referenceEgoMotion (pair, reference);
+    pcl_crf::Rigid2d reference = pcl_crf::Rigid2d::Identity ();
+    const bool has_reference = args.stationary || pcl_crf::referenceEgoMotion (pair, reference);
     pcl_crf::MotionError error, odometry_error;
     if (has_reference) {
       error = pcl_crf::computeMotionError (prediction.T_source_target, reference);

@@ -152,6 +152,28 @@ TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)
   EXPECT_NE (run.output.find ("Ran icp on 5 pairs"), std::string::npos) << run.output;
   EXPECT_NE (run.output.find ("Ego motion vs the reference poses (5 pairs)"), std::string::npos) << run.output;
   EXPECT_EQ (run.output.find ("odometry   translation"), std::string::npos) << run.output;  // bags: none
+  // Without the pose topic the bag has no reference; --stationary makes it the identity,
+  // so the error is the size of ICP's estimate of the true step (0.3, 0.05, 0.02).
+  const fs::path csv_path = dir_ / "stationary.csv";
+  run = runTool ("pcl_crf_run", bag + " --scan-topic /base_scan --stationary -q --csv " + csv_path.string ());
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Ego motion vs the identity (5 pairs)"), std::string::npos) << run.output;
+  std::ifstream csv (csv_path);
+  std::string header, row;
+  std::getline (csv, header);
+  ASSERT_TRUE (std::getline (csv, row)) << header;
+  const auto column = [] (const std::string& line, int k) {  // the k-th comma-separated field
+    std::istringstream fields (line);
+    std::string field;
+    for (int j = 0; j <= k; ++j)
+      std::getline (fields, field, ',');
+    return field;
+  };
+  EXPECT_EQ (column (header, 15), "ref_x");
+  EXPECT_EQ (column (row, 15), "0.000000");
+  EXPECT_EQ (column (header, 18), "translation_error");
+  EXPECT_NEAR (std::stod (column (row, 18)), std::hypot (0.3, 0.05), 0.05) << row;
+  EXPECT_NEAR (std::stod (column (row, 19)), 0.02, 0.01) << row;
   run = runTool ("pcl_crf_run", bag + " -q");
   EXPECT_EQ (run.exit_code, 1);
   EXPECT_NE (run.output.find ("no topic /scan in the bag; it has: /base_scan"), std::string::npos) << run.output;
@@ -174,6 +196,7 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
       {log () + " --min-range 5 --max-range 1", "0 <= min < max"},
       {log () + " extra", "Expected one log file, got 2"},
       {log () + " -o", "-o needs a value"},
+      {log () + " --stationary", "has reference poses: give one or the other"},
   };
   for (const auto& c : cases) {
     const auto run = runTool ("pcl_crf_run", c.arguments);
