@@ -6,6 +6,7 @@
 #include <pcl_crf/joint_crf_estimator.h>
 #include <pcl_crf/logs/log_pairs.h>
 #include <pcl_crf/logs/read_laser_log.h>
+#include <pcl_crf/logs/rosbag_log.h>
 #include <pcl_crf/matching/scan_matching.h>
 #include <pcl_crf/metrics/association_metrics.h>
 #include <pcl_crf/metrics/motion_error.h>
@@ -342,6 +343,32 @@ TEST (JointEstimation, DoesNotSlideAlongTheCsailCorridor)
   ASSERT_TRUE (referenceEgoMotion (pair, reference));
   const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
   EXPECT_LT (computeMotionError (r.T_source_target, reference).translation, 0.02);  // [m]; measured 0.008
+}
+
+TEST (JointEstimation, StandsStillAmongWalkingPeople)
+{
+  // people_stationary_robot.bag, scans 700 → 740: the robot stands still (the true ego
+  // motion is the identity) while people walk around it; at scan 710 one fills a third
+  // of the scan 0.5 m in front of the sensor. The static world must not follow them.
+  const std::string path = std::string (PCL_CRF_SHARED_DATA_DIR) + "/rosbag/people_stationary_robot.bag";
+  if (!std::filesystem::is_regular_file (path))
+    GTEST_SKIP () << path << " is absent (the shared real-data folder is optional)";
+  if (!rosbagSupported ())
+    GTEST_SKIP () << "built without ROS bag support";
+  const LaserLog log = readLaserLog (path);
+  std::vector<double> translation, rotation;
+  for (std::size_t k = 700; k < 740; ++k) {
+    const ScanPair pair = makeLogPair (log, k);
+    const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
+    const MotionError error = computeMotionError (r.T_source_target, Rigid2d::Identity ());
+    translation.push_back (error.translation);
+    rotation.push_back (error.rotation);
+  }
+  std::sort (translation.begin (), translation.end ());
+  std::sort (rotation.begin (), rotation.end ());
+  EXPECT_LT (translation[translation.size () / 2], 0.008);  // [m]; measured 0.0045 (ICP: 0.028)
+  EXPECT_LT (translation.back (), 0.03);                     // [m]; measured 0.017 (ICP: 0.135)
+  EXPECT_LT (rotation.back (), 0.01);                        // [rad]; measured 0.0044 (ICP: 0.044)
 }
 
 TEST (JointEstimation, RejectsBadInput)
