@@ -136,31 +136,19 @@ landedTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points,
   return landed;
 }
 
-/** Per point of \a points: the target segment T puts it on (that of its
- *  landedTargetPoints ()), or -1. */
-std::vector<int>
-landingSegments (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
-{
-  std::vector<int> landing = landedTargetPoints (scene, points, T);
-  for (int& j : landing)
-    if (j >= 0)
-      j = scene.target_segment_of[j];
-  return landing;
-}
-
-/** How many of the object's source points \a object T puts on target segment \a segment. */
-int
-explainedBy (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T)
-{
-  const std::vector<int> landing = landingSegments (scene, object, T);
-  return static_cast<int> (std::count (landing.begin (), landing.end (), segment));
-}
-
 /** The target segment of target point \a j, or -1 for none (j = -1). */
 int
 segmentOfTarget (const FreeSpaceScene& scene, int j)
 {
   return j >= 0 ? scene.target_segment_of[j] : -1;
+}
+
+/** How many of \a landed (landedTargetPoints ()) lie on target segment \a segment. */
+int
+landedOnSegment (const FreeSpaceScene& scene, const std::vector<int>& landed, int segment)
+{
+  return static_cast<int> (
+      std::count_if (landed.begin (), landed.end (), [&] (int j) { return segmentOfTarget (scene, j) == segment; }));
 }
 
 /** Per source point: for the points of \a free, their landedTargetPoints () under the
@@ -175,7 +163,7 @@ staticTargets (const FreeSpaceScene& scene, const std::vector<int>& free, const 
   return target_of;
 }
 
-/** explainedBy () of the static motion, from where it puts the object's points
+/** How many of the object's points the static motion puts on target segment \a segment
  *  (\a static_target, staticTargets ()). */
 int
 explainedByStatic (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
@@ -423,23 +411,12 @@ median (std::vector<double> values)
   return values[values.size () / 2];
 }
 
-/** The fine grid step of the search along target segment \a segment: two of its
- *  median overlap radii, so that the search resolves what the sensor resolves on the
- *  segment (a 1/10-scale car half a metre away slides a few centimetres between
- *  scans, a truck at 10 m a metre or more). */
+/** The median over the points of target \a segment of a per-target-point value
+ *  (FreeSpaceScene::target_spacing, target_radius). */
 double
-fineShiftStep (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
+segmentMedian (const std::vector<double>& per_point, const matching::ScanSegment& segment)
 {
-  return 2.0 * median (std::vector<double> (scene.target_radius.begin () + segment.begin,
-                                            scene.target_radius.begin () + segment.end));
-}
-
-/** The median spacing of the points of target \a segment (pointSpacing ()). */
-double
-medianSpacing (const FreeSpaceScene& scene, const matching::ScanSegment& segment)
-{
-  return median (std::vector<double> (scene.target_spacing.begin () + segment.begin,
-                                      scene.target_spacing.begin () + segment.end));
+  return median (std::vector<double> (per_point.begin () + segment.begin, per_point.begin () + segment.end));
 }
 
 /** The farthest shift searched: max_displacement, or less where the object and the
@@ -465,24 +442,19 @@ shiftReach (const FreeSpaceScene& scene, const std::vector<int>& object, const m
   return std::min (scene.parameters.max_displacement, no_overlap);
 }
 
-/** The object's points join a new cluster of motion T: those it puts on target segment
- *  \a segment matched to their nearest target point, the others unmatched. */
+/** The object's points join a new cluster of motion T: those T puts on target segment
+ *  \a segment matched to the target point they landed on (\a landed,
+ *  landedTargetPoints () under T: their nearest), the others unmatched. */
 void
 addCluster (const FreeSpaceScene& scene, const std::vector<int>& object, int segment, const Rigid2d& T,
-            JointResult& result)
+            const std::vector<int>& landed, JointResult& result)
 {
   const int cluster = static_cast<int> (result.cluster_motions.size ());
   result.cluster_motions.push_back (T);
-  const std::vector<int> landing = landingSegments (scene, object, T);
-  std::vector<int> landed;
   for (std::size_t k = 0; k < object.size (); ++k) {
     result.source_cluster[object[k]] = cluster;
-    result.source_match[object[k]] = kNoMatch;
-    if (landing[k] == segment)
-      landed.push_back (object[k]);
+    result.source_match[object[k]] = segmentOfTarget (scene, landed[k]) == segment ? landed[k] : kNoMatch;
   }
-  associateUnderClusterMotions (scene.source, scene.target_points, landed, result.source_cluster,
-                                result.cluster_motions, result.source_match);
 }
 
 /** The static world's and the unclustered points. */
@@ -546,16 +518,20 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
                              T_static,
                              axis,
                              coarse_step,
-                             std::min (fineShiftStep (scene, segment), coarse_step),
-                             medianSpacing (scene, segment),
+                             // two overlap radii: what the sensor resolves on the segment (a
+                             // 1/10-scale car half a metre away slides a few centimetres, a truck
+                             // at 10 m a metre or more)
+                             std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
+                             segmentMedian (scene.target_spacing, segment),
                              shiftReach (scene, object, segment, T_static, axis)};
     double shift = 0.0;
     if (!freeSpaceShift (search, seen_through, shift))
       continue;
     const Rigid2d T_moved = search.motion (shift);
-    if (explainedBy (scene, object, g, T_moved) < explainedByStatic (scene, object, g, static_target))
+    const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
+    if (landedOnSegment (scene, landed, g) < explainedByStatic (scene, object, g, static_target))
       continue;
-    addCluster (scene, object, g, T_moved, result);
+    addCluster (scene, object, g, T_moved, landed, result);
     ++added;
   }
   if (added > 0)
