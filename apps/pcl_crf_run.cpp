@@ -61,7 +61,9 @@ printHelp (const char* program)
   print_info (" Pairs:\n");
   print_info ("  --start K              index of the first source scan (default: 0)\n");
   print_info ("  --max-pairs N          stop after N pairs (default: 0 = all); pairs are\n"
-              "                         (K, K+step), (K+step, K+2*step), ...\n");
+              "                         (K, K+step), (K+step, K+2*step), ...; the time between a\n"
+              "                         pair's scans (their stamps) bounds how far a moving object\n"
+              "                         is sought (the models' segment_max_speed, 30 m/s)\n");
   pcl_crf::apps::printLogOptionsHelp ();
   print_info (" Reference:\n");
   print_info ("  --stationary           the sensor did not move: every pair's reference ego motion is\n"

@@ -96,10 +96,20 @@ public:
   void
   setInitialGuess (const Matrix4& T_target_source);
 
-  /** \brief Initial guess from odometry: T_target_source = T_source_target⁻¹, and the
-   *  odometry covariance as a prior on the estimated motion. */
+  /** \brief Initial guess from odometry: T_target_source = T_source_target⁻¹, the
+   *  odometry covariance as a prior on the estimated motion, and its interval
+   *  (setScanInterval). */
   void
   setOdometry (const Odometry& odometry);
+
+  /** \brief Time from the source scan to the target scan [s] (0: unknown, the default).
+   *  Bounds how far a moving object is searched for: no farther than the model's top
+   *  speed (SegmentMotionParameters::max_speed, 30 m/s) travels in that time, nor than
+   *  setMaxObjectDisplacement(). Kept by setInitialGuess, replaced by setOdometry. */
+  void
+  setScanInterval (double seconds) { guess_.interval = seconds; }
+  double
+  getScanInterval () const { return guess_.interval; }
 
   Matrix4
   getInitialGuess () const;
@@ -142,6 +152,13 @@ public:
   setMaxObjectDisplacement (double metres) { model_.parameters.candidates.segments.max_displacement = metres; }
   double
   getMaxObjectDisplacement () const { return model_.parameters.candidates.segments.max_displacement; }
+
+  /** \brief Top speed of a moving object [m/s] (0: no bound); with setScanInterval() it
+   *  bounds the displacement searched; default 30. */
+  void
+  setMaxObjectSpeed (double metres_per_second) { model_.parameters.candidates.segments.max_speed = metres_per_second; }
+  double
+  getMaxObjectSpeed () const { return model_.parameters.candidates.segments.max_speed; }
 
   /** \brief A moved point is explained when a target point lies at most this close [m]; default 0.15. */
   void

@@ -70,6 +70,14 @@ public:
   void
   setOdometry (const Matrix4& T_source_target, const Eigen::Matrix3d& covariance);
 
+  /** \brief Time from the source scan to the target scan [s] (0: unknown, the default),
+   *  with or without odometry: no object is searched for farther than the model's top
+   *  speed (SegmentMotionParameters::max_speed, 30 m/s) travels in that time. */
+  void
+  setScanInterval (double seconds) { odometry_.interval = seconds; }
+  double
+  getScanInterval () const { return odometry_.interval; }
+
   /** \brief Covariance of align()'s guess when no odometry is set; default diag(0.25 m², 0.25 m², 0.05 rad²). */
   void
   setGuessCovariance (const Eigen::Matrix3d& covariance) { guess_covariance_ = covariance; }

@@ -96,7 +96,7 @@ readPairText (const std::string& path, ScanPair& pair)
   if (!file)
     throw DatasetError (path + ": cannot open (missing pair.txt?)");
   LineReader reader{path};
-  bool seen_header = false, seen_sensor = false, seen_odometry = false, seen_covariance = false;
+  bool seen_header = false, seen_sensor = false, seen_odometry = false, seen_covariance = false, seen_interval = false;
   std::string line;
   while (std::getline (file, line)) {
     ++reader.line_number;
@@ -128,6 +128,14 @@ readPairText (const std::string& path, ScanPair& pair)
       for (int k = 0; k < 9; ++k)
         pair.odometry.covariance (k / 3, k % 3) = reader.number (in, "odometry covariance entry");
       seen_covariance = true;
+    }
+    else if (key == "interval") {
+      if (seen_interval)
+        reader.fail ("'interval' given twice");
+      seen_interval = true;
+      pair.odometry.interval = reader.number (in, "interval");
+      if (!(pair.odometry.interval > 0.0))
+        reader.fail ("the interval between the scans must be > 0 s (leave the line out when unknown)");
     }
     else if (key == "object")
       readObject (reader, in, pair);
@@ -169,6 +177,10 @@ writePairText (const ScanPair& pair, const std::string& path)
     file << buffer;
   }
   file << "\n";
+  if (pair.odometry.interval > 0.0) {
+    std::snprintf (buffer, sizeof (buffer), "interval %.17g\n", pair.odometry.interval);
+    file << buffer;
+  }
   for (const auto& object : pair.objects)
     file << "object " << object.id << (object.is_static ? " static " : " moving ")
          << xyt (object.T_target_source) << " " << (object.kind.empty () ? "object" : object.kind)

@@ -49,6 +49,9 @@ checkOdometry (const Odometry& odometry, const std::string& where)
     fail (where, "odometry covariance is not symmetric");
   if ((C.diagonal ().array () <= 0.0).any ())
     fail (where, "odometry covariance must have positive variances on its diagonal");
+  if (!std::isfinite (odometry.interval) || odometry.interval < 0.0)
+    fail (where, "the interval between the scans must be a time >= 0 s (0: unknown), not " +
+                     std::to_string (odometry.interval));
 }
 
 std::set<int>

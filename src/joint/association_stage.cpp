@@ -80,7 +80,8 @@ void
 jointPass (AssociationStage& stage, const matching::PreparedTarget& target, const matching::MotionGuess& guess,
            const matching::CrfMatchingModel& matcher, LadderStart& start)
 {
-  const matching::CandidateParameters& parameters = matcher.parameters.candidates;
+  const matching::CandidateParameters parameters =
+      matching::limitToInterval (matcher.parameters, guess.interval).candidates;
   stage.pass = matching::preparePassMotions (stage.source, target, guess.T_target_source, stage.T_first, parameters,
                                              &stage.first_shape_neighbours);
   clusterHypotheses (start, parameters.segments, stage.source, stage.pass);

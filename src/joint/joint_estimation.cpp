@@ -9,6 +9,7 @@
 #include "cluster_numbering.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -310,6 +311,9 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     fail ("the source and target scans must not be empty");
   if (!source.allFinite () || !target.allFinite ())
     fail ("the scans hold NaN or infinite points");
+  if (!std::isfinite (odometry.interval) || odometry.interval < 0.0)
+    fail ("the interval between the scans must be a time >= 0 s (0: unknown), not " +
+          std::to_string (odometry.interval));
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   JointResult result;
@@ -323,10 +327,12 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
     numberLargestFirst (result);
   }
+  const matching::SegmentMotionParameters segments =
+      matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
   if (parameters.remove_clusters_the_static_world_explains)
-    removeClustersTheStaticWorldExplains (target, model.matcher.parameters.candidates.segments, result);
+    removeClustersTheStaticWorldExplains (target, segments, result);
   if (parameters.separate_objects_in_free_space)
-    separateObjectsInFreeSpace (source, target, model.matcher.parameters.candidates.segments, result);
+    separateObjectsInFreeSpace (source, target, segments, result);
   return result;
 }
 

@@ -156,6 +156,8 @@ makeLogPair (const LaserLog& log, std::size_t k, const LogPairOptions& options)
   pair.source = s.points;
   pair.target = t.points;
   pair.odometry = composeOdometry (log, k, options);
+  if (t.stamp > s.stamp)  // otherwise unknown
+    pair.odometry.interval = t.stamp - s.stamp;
   if (s.has_pose && t.has_pose)
     addTruth (log, s, t, options, pair);
   return pair;

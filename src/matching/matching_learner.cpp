@@ -53,7 +53,8 @@ prepareStage (std::vector<TrainingPair>& pairs, const MatchingParameters& parame
   long matched = 0, found = 0;
   for (TrainingPair& pair : pairs) {
     pair.pass = preparePass (pair.source, pair.target, pair.guess.T_target_source, pair.T_current,
-                             parameters.candidates, &pair.pass.shape_neighbours);  // the last stage's, if any
+                             limitToInterval (parameters, pair.guess.interval).candidates,
+                             &pair.pass.shape_neighbours);  // the last stage's, if any
     pair.data_features = dataFeatures (pair.source, pair.target.scan, pair.pass);
     pair.labels = matchStates (pair.pass.candidates, pair.truth);
     for (int i = 0; i < pair.pass.candidates.size (); ++i) {

@@ -47,6 +47,7 @@ validateParameters (const MatchingParameters& p)
   require (s.range_noise >= 0.0 && std::isfinite (s.range_noise), "range_noise must be a distance >= 0 m");
   require (s.min_segment_points >= 1, "min_segment_points must be >= 1");
   require (s.max_displacement >= 0.0 && std::isfinite (s.max_displacement), "max_displacement must be >= 0 m");
+  require (s.max_speed >= 0.0 && std::isfinite (s.max_speed), "max_speed must be >= 0 m/s (0: no bound)");
   require (s.overlap_radius > 0.0 && std::isfinite (s.overlap_radius), "overlap_radius must be > 0 m");
   require (s.overlap_spacings >= 0.0 && std::isfinite (s.overlap_spacings),
            "overlap_spacings must be >= 0 point spacings (0: overlap_radius everywhere)");
@@ -60,6 +61,13 @@ validateParameters (const MatchingParameters& p)
   require (p.fit.initial_scale > 0.0 && std::isfinite (p.fit.initial_scale) && p.fit.final_scale > 0.0 &&
                std::isfinite (p.fit.final_scale),
            "fit scales must be positive distances [m]");
+}
+
+MatchingParameters
+limitToInterval (MatchingParameters parameters, double interval)
+{
+  parameters.candidates.segments = limitToInterval (parameters.candidates.segments, interval);
+  return parameters;
 }
 
 }  // namespace matching

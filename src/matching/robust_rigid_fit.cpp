@@ -149,6 +149,7 @@ MotionGuess::fromOdometry (const Odometry& odometry)
 {
   MotionGuess guess;
   guess.T_target_source = odometry.T_source_target.inverse ();
+  guess.interval = odometry.interval;
   // T_ts = (−R(φ)ᵀ t, −φ) of T_st = (t, φ); J = ∂T_ts / ∂T_st.
   const Eigen::Vector3d xi = toXYTheta (odometry.T_source_target);
   const double c = std::cos (xi (2)), s = std::sin (xi (2));

@@ -120,6 +120,14 @@ overlapRadius (const SegmentMotionParameters& parameters, double point_spacing)
   return std::min (parameters.overlap_radius, resolution);
 }
 
+SegmentMotionParameters
+limitToInterval (SegmentMotionParameters parameters, double interval)
+{
+  if (interval > 0.0 && parameters.max_speed > 0.0)
+    parameters.max_displacement = std::min (parameters.max_displacement, parameters.max_speed * interval);
+  return parameters;
+}
+
 double
 pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end)
 {

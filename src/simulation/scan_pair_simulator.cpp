@@ -252,6 +252,7 @@ ScanPairSimulator::simulate (std::size_t index, PairSummary* summary, PairScene*
   pair.odometry.covariance.setZero ();
   for (int i = 0; i < 3; ++i)
     pair.odometry.covariance (i, i) = std::max (c.odometry_noise[i] * c.odometry_noise[i], kMinOdometryVariance);
+  pair.odometry.interval = duration;
 
   assignTrueMatches (pair, c.laser.range_noise);
 

@@ -247,6 +247,28 @@ TEST_F (DatasetIo, NanInPairTextIsAnError)
   expectLoadError (pair_dir, "NaN or infinite");
 }
 
+TEST_F (DatasetIo, ScanIntervalIsOptionalAndPositive)
+{
+  ScanPair pair = makeSmallPair ();  // interval unknown: no line
+  pcl_crf::saveScanPair (pair, (dir_ / "unknown").string ());
+  std::ifstream unknown_text (dir_ / "unknown" / "pair.txt");
+  std::stringstream unknown;
+  unknown << unknown_text.rdbuf ();
+  EXPECT_EQ (unknown.str ().find ("interval"), std::string::npos);
+  EXPECT_EQ (pcl_crf::loadScanPair ((dir_ / "unknown").string ()).odometry.interval, 0.0);
+  pair.odometry.interval = 0.08;
+  pcl_crf::saveScanPair (pair, (dir_ / "known").string ());
+  EXPECT_EQ (pcl_crf::loadScanPair ((dir_ / "known").string ()).odometry.interval, 0.08);  // exact: %.17g
+  replaceInFile (dir_ / "known" / "pair.txt", "interval 0.080000000000000002", "interval 0");
+  expectLoadError ((dir_ / "known").string (), "pair.txt:5: the interval between the scans must be > 0 s");
+  replaceInFile (dir_ / "known" / "pair.txt", "interval 0", "interval 0.1\ninterval 0.2");
+  expectLoadError ((dir_ / "known").string (), "pair.txt:6: 'interval' given twice");
+  pair.odometry.interval = -0.1;
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+  pair.odometry.interval = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
+}
+
 TEST_F (DatasetIo, BadCovarianceIsAnError)
 {
   ScanPair pair = makeSmallPair ();

@@ -128,6 +128,31 @@ TEST (JointEstimation, AssociatesAMovingCarAlongItsMotionWhereCrfMatchingAloneDo
   }
 }
 
+TEST (JointEstimation, DoesNotSeekACarFartherThanItCanHaveDrivenInTheScanInterval)
+{
+  // The Fig. 3 pairs again, each car moving d metres relative to the static world. With
+  // the pairs' true interval (d / interval is the car's 3–6 m/s, far below the model's
+  // 30 m/s) the joint model follows the car; were the scans d / 60 s apart, 30 m/s
+  // reaches only half of d, and no search may take the car's points that far.
+  const int car = 1;
+  for (const auto& [seed, index] : std::vector<std::pair<int, int>>{{208, 2}, {411, 4}}) {
+    SCOPED_TRACE ("seed " + std::to_string (seed) + " pair " + std::to_string (index));
+    simulation::SimulatorConfig config;
+    config.scene = simulation::SceneType::Outline;
+    config.seed = static_cast<std::uint64_t> (seed);
+    ScanPair pair = simulation::ScanPairSimulator (config).simulate (index);
+    const Rigid2d world = pair.objects[pair.objectIndex (pair.staticObjectId ())].T_target_source;
+    const Rigid2d moved = pair.objects[pair.objectIndex (car)].T_target_source;
+    const double d = (moved.translation () - world.translation ()).norm ();
+    ASSERT_GT (pair.odometry.interval, 0.2);
+    EXPECT_GE (correctOn (pair, car, joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ()).source_match),
+               matchedOn (pair, car) / 2);
+    pair.odometry.interval = d / 60.0;
+    EXPECT_LE (correctOn (pair, car, joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ()).source_match),
+               3);
+  }
+}
+
 TEST (JointAssociation, TakesTheNearestTargetPointUnderEachClustersMotion)
 {
   // Two clusters: a wall that stays (identity) and a box that moved 1 m along x. The
@@ -385,6 +410,9 @@ TEST (JointEstimation, RejectsBadInput)
   bad.max_rounds = 0;
   EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), bad),
                 std::invalid_argument);
+  Odometry backwards = pair.odometry;
+  backwards.interval = -0.1;
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, backwards, shippedModel ()), std::invalid_argument);
 }
 
 TEST (JointEstimation, HandlesTinyScans)
@@ -508,6 +536,16 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   estimator.align (aligned);  // untrained model and empty source
   EXPECT_FALSE (estimator.hasConverged ());
   EXPECT_TRUE (estimator.getClusters ().empty ());
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  estimator.setModel (shippedModel ());
+  estimator.setInputSource (toCloud (pair.source));
+  estimator.setInputTarget (toCloud (pair.target));
+  estimator.setScanInterval (std::numeric_limits<double>::quiet_NaN ());
+  estimator.align (aligned);  // a NaN interval
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setScanInterval (0.3);
+  estimator.align (aligned);
+  EXPECT_TRUE (estimator.hasConverged ());
 }
 
 }  // namespace

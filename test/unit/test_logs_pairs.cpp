@@ -80,6 +80,7 @@ TEST (LogPairs, UnlabelledPairCarriesReferenceMotionAndOdometry)
   ASSERT_TRUE (pcl_crf::referenceEgoMotion (pair, reference));
   EXPECT_TRUE (reference.isApprox (log.scans[1].pose.inverse () * log.scans[2].pose, 1e-12));
   EXPECT_TRUE (pair.odometry.T_source_target.isApprox (log.scans[2].odometry_step, 1e-12));
+  EXPECT_DOUBLE_EQ (pair.odometry.interval, 1.0);  // stamps 11 and 12
   // the static world maps source points onto target points
   const Rigid2d world = pair.objects[0].T_target_source;
   EXPECT_LT ((world * pair.source.col (3) - pair.target.col (3)).norm (), 1e-9);
@@ -99,6 +100,7 @@ TEST (LogPairs, OdometryComposesOverStepsWithTheNoiseModel)
   const Eigen::Matrix3d expected =
       options.noise.covariance (log.scans[1].odometry_step) + options.noise.covariance (log.scans[2].odometry_step);
   EXPECT_TRUE (pair.odometry.covariance.isApprox (expected));
+  EXPECT_DOUBLE_EQ (pair.odometry.interval, 2.0);
   EXPECT_NO_THROW (pcl_crf::makeLogPair (log, 0, options));
   EXPECT_THROW (pcl_crf::makeLogPair (log, 1, options), pcl_crf::LogError);  // 1 + 2 is past the end
 }

@@ -8,6 +8,7 @@
 #include <pcl_crf/matching/pass_geometry.h>
 #include <pcl_crf/matching/raw_features.h>
 #include <pcl_crf/matching/robust_rigid_fit.h>
+#include <pcl_crf/matching/scan_matching.h>
 #include <pcl_crf/matching/segment_motions.h>
 #include <pcl_crf/matching/shape_features.h>
 
@@ -292,6 +293,61 @@ TEST (MatchingSegments, HypothesisFollowsAMovingBoxAtAnyScale)
   const m::PassGeometry metric = m::preparePass (source, target, Rigid2d::Identity (), Rigid2d::Identity (), parameters);
   EXPECT_DOUBLE_EQ (metric.segment_motions.current_support (scene.box_begin), 1.0);
   EXPECT_FALSE (metric.segment_motions.has_hypothesis[scene.box_begin]);
+}
+
+TEST (MatchingSegments, ScanIntervalBoundsTheDisplacementAtTheTopSpeed)
+{
+  m::SegmentMotionParameters parameters;  // 6 m, 30 m/s
+  EXPECT_DOUBLE_EQ (m::limitToInterval (parameters, 0.0).max_displacement, 6.0);  // unknown interval
+  EXPECT_DOUBLE_EQ (m::limitToInterval (parameters, 0.1).max_displacement, 3.0);
+  EXPECT_DOUBLE_EQ (m::limitToInterval (parameters, 0.5).max_displacement, 6.0);  // 15 m at 30 m/s
+  parameters.max_speed = 0.0;                                                      // no bound
+  EXPECT_DOUBLE_EQ (m::limitToInterval (parameters, 0.1).max_displacement, 6.0);
+  m::MatchingParameters matching;
+  EXPECT_DOUBLE_EQ (m::limitToInterval (matching, 0.05).candidates.segments.max_displacement, 1.5);
+}
+
+TEST (MatchingSegments, NoHypothesisFartherThanTheTopSpeedGoesInTheScanInterval)
+{
+  // The box moves 3 m: 0.2 s apart at 30 m/s (6 m) it gets its hypothesis, 0.05 s
+  // apart (1.5 m) it cannot have moved that far and gets none.
+  const MovingBoxScene scene = movingBoxScene ();
+  m::CandidateParameters parameters;
+  const m::PreparedTarget target = m::prepareTarget (scene.target, parameters);
+  const m::ScanShape source = m::describeScan (scene.source);
+  for (const double interval : {0.0, 0.2, 0.05}) {
+    m::CandidateParameters bounded = parameters;
+    bounded.segments = m::limitToInterval (parameters.segments, interval);
+    const m::PassGeometry pass = m::preparePass (source, target, Rigid2d::Identity (), Rigid2d::Identity (), bounded);
+    for (int i = scene.box_begin; i < scene.box_end; ++i)
+      EXPECT_EQ (pass.segment_motions.has_hypothesis[i], interval != 0.05) << "box point " << i << ", " << interval << " s";
+  }
+}
+
+TEST (MatchingScans, AnObjectIsNotSoughtFartherThanItCanHaveMovedInTheScanInterval)
+{
+  // The shipped model on the box scene: with the interval unknown (or 0.2 s, 6 m at
+  // 30 m/s) the box is associated 3 m along its motion; 0.05 s apart (1.5 m) it cannot
+  // have gone that far and none of its points is.
+  const m::CrfMatchingModel model = m::loadModel (std::string (PCL_CRF_SOURCE_DIR) + "/data/models/crf-matching.model");
+  const MovingBoxScene scene = movingBoxScene ();
+  const int box_points = scene.box_end - scene.box_begin;
+  m::MotionGuess guess;
+  for (const double interval : {0.0, 0.2, 0.05}) {
+    guess.interval = interval;
+    const m::MatchResult result = m::matchScans (scene.source, scene.target, guess, model);
+    int along = 0;
+    for (int i = scene.box_begin; i < scene.box_end; ++i)
+      along += result.matches[i] == scene.source_match[i];
+    if (interval == 0.05) {
+      EXPECT_EQ (along, 0);
+    }
+    else {
+      EXPECT_GE (along, box_points / 2) << interval << " s";
+    }
+  }
+  guess.interval = -0.1;
+  EXPECT_THROW (m::matchScans (scene.source, scene.target, guess, model), std::invalid_argument);
 }
 
 TEST (MatchingBoosting, VectorisedMarginsEqualTheClassifier)

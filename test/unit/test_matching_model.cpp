@@ -16,6 +16,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace {
@@ -277,6 +278,22 @@ TEST_F (MatchingModelTest, RecordsTheOverlapRadiusInPointSpacings)
   const std::string negative =
       readError (editedModel (*model_, "segment_overlap_spacings 2\n", "segment_overlap_spacings -1\n"));
   EXPECT_NE (negative.find ("'segment_overlap_spacings'"), std::string::npos) << negative;
+}
+
+TEST_F (MatchingModelTest, RecordsTheTopSpeedOfAnObject)
+{
+  EXPECT_EQ (model_->parameters.candidates.segments.max_speed, 30.0);
+  std::stringstream text;
+  m::writeModel (*model_, text);
+  EXPECT_EQ (m::readModel (text).parameters.candidates.segments.max_speed, 30.0);
+  // Files written before the field had no speed bound, and still have none.
+  std::istringstream older (editedModel (*model_, "segment_max_speed 30\n", ""));
+  EXPECT_EQ (m::readModel (older).parameters.candidates.segments.max_speed, 0.0);
+  const std::string negative = readError (editedModel (*model_, "segment_max_speed 30\n", "segment_max_speed -5\n"));
+  EXPECT_NE (negative.find ("'segment_max_speed'"), std::string::npos) << negative;
+  m::MatchingParameters parameters;
+  parameters.candidates.segments.max_speed = std::numeric_limits<double>::infinity ();
+  EXPECT_THROW (m::validateParameters (parameters), std::invalid_argument);
 }
 
 TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)

@@ -430,6 +430,10 @@ TEST (SimulatorTruth, OdometryIsTheTrueMotionPlusNoise)
   const auto& world = exact.objects[exact.objectIndex (exact.staticObjectId ())];
   EXPECT_LT ((world.T_target_source.matrix () - motion.inverse ().matrix ()).norm (), 1e-12);
   EXPECT_GT (motion.translation ().x (), 1.9);  // forward travel of 2..4 m
+  // The scans are as far apart in time as 10 m/s takes to drive it (the yaw bends the path).
+  EXPECT_GT (exact.odometry.interval, 0.2);
+  EXPECT_LT (exact.odometry.interval, 0.4);
+  EXPECT_NEAR (exact.odometry.interval * config.ego_speed, motion.translation ().norm (), 0.01);
   EXPECT_NEAR (exact.odometry.covariance (0, 0), 1e-6, 1e-18);  // variance floor
   EXPECT_EQ (exact.odometry.covariance (0, 1), 0.0);
 
@@ -449,6 +453,7 @@ TEST (SimulatorTruth, ConsecutiveSpacingIsOneScanPeriod)
   sim::PairSummary summary;
   const ScanPair pair = sim::ScanPairSimulator (config).simulate (4, &summary);
   EXPECT_NEAR (summary.duration, 1.0 / 75.0, 1e-15);
+  EXPECT_EQ (pair.odometry.interval, summary.duration);
   EXPECT_NEAR (pair.odometry.T_source_target.translation ().x (), 10.0 / 75.0, 1e-9);
   // Almost everything is seen again after 13 cm of travel.
   EXPECT_GT (summary.matched, 0.8 * summary.source_points);

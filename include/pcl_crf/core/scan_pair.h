@@ -52,6 +52,9 @@ struct Odometry
 {
   Rigid2d T_source_target = Rigid2d::Identity ();
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity ();
+  /** time from the source scan to the target scan [s]; 0 when unknown. With it the
+   *  estimators bound how far an object can have moved (SegmentMotionParameters::max_speed). */
+  double interval = 0.0;
 };
 
 /** \brief Two consecutive laser scans in beam order plus their ground truth.

@@ -53,8 +53,10 @@ CRFMatcher<PointSource, PointTarget, Scalar>::loadModel (const std::string& path
 template <typename PointSource, typename PointTarget, typename Scalar> void
 CRFMatcher<PointSource, PointTarget, Scalar>::setInitialGuess (const Matrix4& T_target_source)
 {
+  const double interval = guess_.interval;
   guess_ = matching::MotionGuess ();
   guess_.T_target_source = toRigid2d (T_target_source);
+  guess_.interval = interval;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void

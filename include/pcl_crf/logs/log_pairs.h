@@ -77,7 +77,8 @@ logPairCount (std::size_t scan_count, std::size_t step);
  *  - odometry: the composed odometry steps k+1 .. k+step with the noise model's
  *    covariance (summed over the steps: first order, the coupling of rotation
  *    into translation is ignored), or the identity with the weak prior
- *    when a step has no odometry.
+ *    when a step has no odometry; its interval is the scans' stamp difference
+ *    (0, unknown, when the stamps do not increase).
  *  - objects: when both scans have a reference pose P_s, P_t (sensor in the
  *    world), the static world (id 0, "world", T_target_source = inv(P_t) * P_s,
  *    the inverse of the reference ego motion) and every tracked object whose

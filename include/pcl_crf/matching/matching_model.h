@@ -114,6 +114,12 @@ struct CrfMatchingModel
 void
 validateParameters (const MatchingParameters& parameters);
 
+/** \brief \a parameters for a pair \a interval seconds apart: the segment hypotheses
+ *  reach no farther than an object at SegmentMotionParameters::max_speed travels
+ *  (limitToInterval of candidates.segments; unchanged when the interval is 0, unknown). */
+MatchingParameters
+limitToInterval (MatchingParameters parameters, double interval);
+
 /** \brief Version of the model file format written by writeModel. */
 constexpr int kModelFileVersion = 1;
 

@@ -27,6 +27,8 @@ struct MotionGuess
 {
   Rigid2d T_target_source = Rigid2d::Identity ();
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero ();
+  /** time from the source scan to the target scan [s]; 0 when unknown (Odometry::interval). */
+  double interval = 0.0;
 
   /** \brief The guess an odometry reading gives: T_target_source = T_source_target⁻¹,
    *  its covariance propagated through the inversion (first order). A covariance

@@ -30,6 +30,13 @@ struct SegmentMotionParameters
   /** largest displacement of an object between the scans beyond the static
    *  motion, about top speed × scan interval [m]; default 6. */
   double max_displacement = 6.0;
+  /** top speed of a moving object [m/s]: when the time between the scans is known
+   *  (MotionGuess::interval), an object moves at most max_speed × interval, and the
+   *  hypotheses and searches reach no farther than the smaller of that and
+   *  max_displacement (limitToInterval ()); 0: no such bound. Default 30 (108 km/h,
+   *  twice the fastest car of the simulator, so that its pairs, 0.2–0.4 s apart, keep
+   *  the 6 m bound). */
+  double max_speed = 30.0;
   /** the most a moved source point may lie from a target point and still be
    *  explained [m]; default 0.15 (about two beam spacings at 10 m). */
   double overlap_radius = 0.15;
@@ -56,6 +63,18 @@ struct SegmentMotionParameters
  */
 double
 overlapRadius (const SegmentMotionParameters& parameters, double point_spacing);
+
+/** \brief \a parameters with max_displacement bounded by how far an object moving at
+ *  max_speed travels in \a interval seconds (unchanged when the interval is unknown, 0,
+ *  or max_speed is 0).
+ *
+ *  \code
+ *  const pcl_crf::matching::SegmentMotionParameters bounded =
+ *      pcl_crf::matching::limitToInterval (parameters, pair.odometry.interval);  // 0.1 s: 3 m
+ *  \endcode
+ */
+SegmentMotionParameters
+limitToInterval (SegmentMotionParameters parameters, double interval);
 
 /** \brief The larger distance from point i to its neighbours i − 1 and i + 1 within
  *  the run [begin, end) of \a points (0 when it has none there) [m]. */
