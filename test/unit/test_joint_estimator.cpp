@@ -94,6 +94,19 @@ matchedOn (const ScanPair& pair, int id)
   return matched;
 }
 
+/** The simulator's "outline" pairs of the Fig. 3 tests (seed, index): a car (object 1)
+ *  driving along its own outline. */
+const std::vector<std::pair<int, int>> kOutlinePairs{{208, 2}, {411, 4}};
+
+ScanPair
+outlinePair (int seed, int index)
+{
+  simulation::SimulatorConfig config;
+  config.scene = simulation::SceneType::Outline;
+  config.seed = static_cast<std::uint64_t> (seed);
+  return simulation::ScanPairSimulator (config).simulate (index);
+}
+
 TEST (JointEstimation, AssociatesAMovingCarAlongItsMotionWhereCrfMatchingAloneDoesNot)
 {
   // The joint paper's Fig. 3 effect on pairs neither model was trained on: the
@@ -111,12 +124,9 @@ TEST (JointEstimation, AssociatesAMovingCarAlongItsMotionWhereCrfMatchingAloneDo
   const matching::CrfMatchingModel matcher =
       matching::loadModel (std::string (PCL_CRF_SOURCE_DIR) + "/data/models/crf-matching.model");
   const int car = 1;
-  for (const auto& [seed, index] : std::vector<std::pair<int, int>>{{208, 2}, {411, 4}}) {
+  for (const auto& [seed, index] : kOutlinePairs) {
     SCOPED_TRACE ("seed " + std::to_string (seed) + " pair " + std::to_string (index));
-    simulation::SimulatorConfig config;
-    config.scene = simulation::SceneType::Outline;
-    config.seed = static_cast<std::uint64_t> (seed);
-    const ScanPair pair = simulation::ScanPairSimulator (config).simulate (index);
+    const ScanPair pair = outlinePair (seed, index);
     ASSERT_EQ (pair.objects[pair.objectIndex (car)].kind, "car");
     const int matched = matchedOn (pair, car);
     ASSERT_GE (matched, 60);
@@ -135,12 +145,9 @@ TEST (JointEstimation, DoesNotSeekACarFartherThanItCanHaveDrivenInTheScanInterva
   // 30 m/s) the joint model follows the car; were the scans d / 60 s apart, 30 m/s
   // reaches only half of d, and no search may take the car's points that far.
   const int car = 1;
-  for (const auto& [seed, index] : std::vector<std::pair<int, int>>{{208, 2}, {411, 4}}) {
+  for (const auto& [seed, index] : kOutlinePairs) {
     SCOPED_TRACE ("seed " + std::to_string (seed) + " pair " + std::to_string (index));
-    simulation::SimulatorConfig config;
-    config.scene = simulation::SceneType::Outline;
-    config.seed = static_cast<std::uint64_t> (seed);
-    ScanPair pair = simulation::ScanPairSimulator (config).simulate (index);
+    ScanPair pair = outlinePair (seed, index);
     const Rigid2d world = pair.objects[pair.objectIndex (pair.staticObjectId ())].T_target_source;
     const Rigid2d moved = pair.objects[pair.objectIndex (car)].T_target_source;
     const double d = (moved.translation () - world.translation ()).norm ();

@@ -214,6 +214,24 @@ readError (const std::string& text)
   return "";
 }
 
+/** A line added to the file format later: its field (\a field of the parameters) reads
+ *  back as written, as \a absent from a file without \a line, and \a bad_line is an
+ *  error naming its key. */
+template <typename Field>
+void
+expectOptionalLine (const m::CrfMatchingModel& model, const std::string& line, const std::string& bad_line,
+                    double absent, Field field)
+{
+  std::stringstream text;
+  m::writeModel (model, text);
+  EXPECT_EQ (field (m::readModel (text).parameters), field (model.parameters));
+  std::istringstream older (editedModel (model, line, ""));
+  EXPECT_EQ (field (m::readModel (older).parameters), absent);
+  const std::string key = line.substr (0, line.find (' '));
+  const std::string error = readError (editedModel (model, line, bad_line));
+  EXPECT_NE (error.find ("'" + key + "'"), std::string::npos) << error;
+}
+
 TEST_F (MatchingModelTest, MalformedModelFilesGiveClearErrors)
 {
   // Wrong version, on line 1.
@@ -255,42 +273,27 @@ TEST_F (MatchingModelTest, RecordsTheBeamSpacingItWasTrainedAt)
   EXPECT_NEAR (model_->parameters.training_beam_spacing, M_PI / 360, 1e-6);  // 361 beams over 180°
   std::stringstream text;
   m::writeModel (*model_, text);
-  EXPECT_EQ (m::readModel (text).parameters.training_beam_spacing, model_->parameters.training_beam_spacing);
+  const std::string from = text.str ().substr (text.str ().find ("training_beam_spacing "));
+  const std::string line = from.substr (0, from.find ('\n') + 1);
   // Files written before the field read as "never thin".
-  std::stringstream spacing;
-  spacing << "training_beam_spacing " << text.str ().substr (text.str ().find ("training_beam_spacing ") + 22);
-  const std::string line = spacing.str ().substr (0, spacing.str ().find ('\n') + 1);
-  std::istringstream older (editedModel (*model_, line, ""));
-  EXPECT_EQ (m::readModel (older).parameters.training_beam_spacing, 0.0);
-  const std::string negative = readError (editedModel (*model_, line, "training_beam_spacing -0.1\n"));
-  EXPECT_NE (negative.find ("'training_beam_spacing'"), std::string::npos) << negative;
+  expectOptionalLine (*model_, line, "training_beam_spacing -0.1\n", 0.0,
+                      [] (const m::MatchingParameters& p) { return p.training_beam_spacing; });
 }
 
 TEST_F (MatchingModelTest, RecordsTheOverlapRadiusInPointSpacings)
 {
   EXPECT_EQ (model_->parameters.candidates.segments.overlap_spacings, 2.0);
-  std::stringstream text;
-  m::writeModel (*model_, text);
-  EXPECT_EQ (m::readModel (text).parameters.candidates.segments.overlap_spacings, 2.0);
   // Files written before the field used the metric radius everywhere, and still do.
-  std::istringstream older (editedModel (*model_, "segment_overlap_spacings 2\n", ""));
-  EXPECT_EQ (m::readModel (older).parameters.candidates.segments.overlap_spacings, 0.0);
-  const std::string negative =
-      readError (editedModel (*model_, "segment_overlap_spacings 2\n", "segment_overlap_spacings -1\n"));
-  EXPECT_NE (negative.find ("'segment_overlap_spacings'"), std::string::npos) << negative;
+  expectOptionalLine (*model_, "segment_overlap_spacings 2\n", "segment_overlap_spacings -1\n", 0.0,
+                      [] (const m::MatchingParameters& p) { return p.candidates.segments.overlap_spacings; });
 }
 
 TEST_F (MatchingModelTest, RecordsTheTopSpeedOfAnObject)
 {
   EXPECT_EQ (model_->parameters.candidates.segments.max_speed, 30.0);
-  std::stringstream text;
-  m::writeModel (*model_, text);
-  EXPECT_EQ (m::readModel (text).parameters.candidates.segments.max_speed, 30.0);
   // Files written before the field had no speed bound, and still have none.
-  std::istringstream older (editedModel (*model_, "segment_max_speed 30\n", ""));
-  EXPECT_EQ (m::readModel (older).parameters.candidates.segments.max_speed, 0.0);
-  const std::string negative = readError (editedModel (*model_, "segment_max_speed 30\n", "segment_max_speed -5\n"));
-  EXPECT_NE (negative.find ("'segment_max_speed'"), std::string::npos) << negative;
+  expectOptionalLine (*model_, "segment_max_speed 30\n", "segment_max_speed -5\n", 0.0,
+                      [] (const m::MatchingParameters& p) { return p.candidates.segments.max_speed; });
   m::MatchingParameters parameters;
   parameters.candidates.segments.max_speed = std::numeric_limits<double>::infinity ();
   EXPECT_THROW (m::validateParameters (parameters), std::invalid_argument);
