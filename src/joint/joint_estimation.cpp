@@ -9,7 +9,6 @@
 #include "cluster_numbering.h"
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -311,9 +310,6 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     fail ("the source and target scans must not be empty");
   if (!source.allFinite () || !target.allFinite ())
     fail ("the scans hold NaN or infinite points");
-  if (!std::isfinite (odometry.interval) || odometry.interval < 0.0)
-    fail ("the interval between the scans must be a time >= 0 s (0: unknown), not " +
-          std::to_string (odometry.interval));
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   JointResult result;

@@ -4,9 +4,7 @@
 #include <pcl_crf/matching/robust_rigid_fit.h>
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
-#include <string>
 
 namespace pcl_crf {
 namespace matching {
@@ -54,14 +52,11 @@ checkModel (const CrfMatchingModel& model)
 /** The model's and the source scan's checks, before any thinning (so that a NaN is
  *  named as such, not as a bearing). */
 void
-checkModelAndSource (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source, const MotionGuess& guess)
+checkModelAndSource (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source)
 {
   checkModel (model);
   if (!source.allFinite ())
     throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
-  if (!std::isfinite (guess.interval) || guess.interval < 0.0)
-    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the interval between the scans must be a time >= 0 s "
-                                 "(0: unknown), not " + std::to_string (guess.interval));
 }
 
 /** The candidates and marginals of a full source point: those of its anchor, as full
@@ -144,7 +139,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModelAndSource (model, source, guess);
+  checkModelAndSource (model, source);
   MatchResult result;
   result.T_target_source = guess.T_target_source;
   if (source.cols () == 0)
@@ -184,7 +179,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModelAndSource (model, source, guess);
+  checkModelAndSource (model, source);
   ThinnedPair thinned;
   thinned.source = thinToSpacing (source, model.parameters.training_beam_spacing);
   thinned.target = target.thinned;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace matching {
@@ -123,6 +125,9 @@ overlapRadius (const SegmentMotionParameters& parameters, double point_spacing)
 SegmentMotionParameters
 limitToInterval (SegmentMotionParameters parameters, double interval)
 {
+  if (!std::isfinite (interval) || interval < 0.0)
+    throw std::invalid_argument ("[pcl_crf::matching::limitToInterval] the interval between the scans must be a time "
+                                 ">= 0 s (0: unknown), not " + std::to_string (interval));
   if (interval > 0.0 && parameters.max_speed > 0.0)
     parameters.max_displacement = std::min (parameters.max_displacement, parameters.max_speed * interval);
   return parameters;

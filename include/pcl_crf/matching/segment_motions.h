@@ -66,7 +66,8 @@ overlapRadius (const SegmentMotionParameters& parameters, double point_spacing);
 
 /** \brief \a parameters with max_displacement bounded by how far an object moving at
  *  max_speed travels in \a interval seconds (unchanged when the interval is unknown, 0,
- *  or max_speed is 0).
+ *  or max_speed is 0). Every estimator that takes the interval goes through here.
+ *  \throws std::invalid_argument for a negative or non-finite interval.
  *
  *  \code
  *  const pcl_crf::matching::SegmentMotionParameters bounded =
