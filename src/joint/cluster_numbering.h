@@ -5,6 +5,8 @@
 
 #include <pcl_crf/joint/joint_estimation.h>
 
+#include <vector>
+
 namespace pcl_crf {
 namespace joint {
 namespace detail {
@@ -19,6 +21,11 @@ numberLargestFirst (JointResult& result);
  *  cluster (or the static one) is not one of the result's. */
 void
 checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
+
+/** Removes the clusters marked in \a removed (one flag per cluster): their points become
+ *  outliers (kNoMatch, kOutlierCluster), the others are renumbered largest first. */
+void
+removeClusters (const std::vector<bool>& removed, JointResult& result);
 
 }  // namespace detail
 }  // namespace joint

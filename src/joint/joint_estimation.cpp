@@ -327,6 +327,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
       matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, segments, result);
+  if (parameters.remove_clusters_the_target_sees_through)
+    removeClustersTheTargetSeesThrough (source, target, segments, result);
   if (parameters.separate_objects_in_free_space)
     separateObjectsInFreeSpace (source, target, segments, result);
   return result;

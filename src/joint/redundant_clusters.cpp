@@ -59,10 +59,10 @@ explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotion
   return explained;
 }
 
-/** Removes the clusters marked in \a removed: their points become outliers, the others
- *  are renumbered in their order. */
+}  // namespace
+
 void
-removeClusters (const std::vector<bool>& removed, JointResult& result)
+detail::removeClusters (const std::vector<bool>& removed, JointResult& result)
 {
   std::vector<int> rank (removed.size (), kOutlierCluster);
   std::vector<Rigid2d> motions;
@@ -84,8 +84,6 @@ removeClusters (const std::vector<bool>& removed, JointResult& result)
   detail::numberLargestFirst (result);  // the sizes and the outlier list
 }
 
-}  // namespace
-
 int
 removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result)
@@ -101,7 +99,7 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
   for (bool r : removed)
     count += r ? 1 : 0;
   if (count > 0)
-    removeClusters (removed, result);
+    detail::removeClusters (removed, result);
   return count;
 }
 

@@ -178,6 +178,29 @@ int
 removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result);
 
+/** \brief Removes every cluster but the static world that the target scan refutes: more
+ *  points of its extent land, under its motion, where the target sensor saw through
+ *  (matching::seesThrough () with the breakpoint distance of \a parameters) than it has
+ *  matched points. Its extent is its points and the outliers it would label (those
+ *  whose nearer closest clustered neighbour along their source segment,
+ *  matching::segmentScan (), is one of its points): a rigid object's points under its
+ *  true motion are where the target saw them, hidden behind something or out of view,
+ *  never in the target's free space. Typically a stretch of wall that left the view,
+ *  whose last few points matched surfaces newly seen behind it: the motion that
+ *  matches them sweeps the rest of the wall through the target's view; or a mover's
+ *  few points fitted with a wrong motion. The removed clusters' points become outliers; the others keep their
+ *  order (renumbered largest first).
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the breakpoint angle and range noise (the matcher's segment parameters)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of clusters removed
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or with
+ *  \a source, or a match is not a target point. */
+int
+removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result);
+
 /** \brief Separates from the static world the objects its motion puts where the source
  *  sensor saw through: a vehicle driving alongside shows a long side that slides along
  *  itself, which the static motion maps onto the same side in the target, so only its

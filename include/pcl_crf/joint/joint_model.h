@@ -34,6 +34,9 @@ struct JointParameters
   /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;
+  /** true (default): clusters with more points the target saw through under their
+   *  motion than matched points become outliers (removeClustersTheTargetSeesThrough ()). */
+  bool remove_clusters_the_target_sees_through = true;
   /** true (default): objects the static motion puts where the source saw through get a
    *  cluster of their own (separateObjectsInFreeSpace ()). */
   bool separate_objects_in_free_space = true;

@@ -1,0 +1,102 @@
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/range_profile.h>
+#include <pcl_crf/matching/scan_segments.h>
+
+#include "cluster_numbering.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** Per source point: its cluster, or for an outlier the cluster of the nearer of the
+ *  closest clustered points before and after it on its segment (kOutlierCluster when its
+ *  segment has none): the cluster whose motion the point would share. */
+std::vector<int>
+attachedClusters (const Eigen::Matrix2Xd& source, const std::vector<matching::ScanSegment>& segments,
+                  const std::vector<int>& cluster)
+{
+  std::vector<int> attached (cluster);
+  for (const matching::ScanSegment& segment : segments)
+    for (int i = segment.begin; i < segment.end; ++i) {
+      if (cluster[i] != kOutlierCluster)
+        continue;
+      int before = i - 1, after = i + 1;
+      while (before >= segment.begin && cluster[before] == kOutlierCluster)
+        --before;
+      while (after < segment.end && cluster[after] == kOutlierCluster)
+        ++after;
+      const double d_before = before >= segment.begin ? (source.col (before) - source.col (i)).squaredNorm () : -1.0;
+      const double d_after = after < segment.end ? (source.col (after) - source.col (i)).squaredNorm () : -1.0;
+      if (d_before >= 0.0 && (d_after < 0.0 || d_before <= d_after))
+        attached[i] = cluster[before];
+      else if (d_after >= 0.0)
+        attached[i] = cluster[after];
+    }
+  return attached;
+}
+
+/** Per cluster: how many points of its extent (\a attached) the target sensor saw
+ *  through under its motion, and how many of its own points are matched. */
+struct FreeSpaceEvidence
+{
+  std::vector<int> seen_through;
+  std::vector<int> matched;
+};
+
+FreeSpaceEvidence
+weighEvidence (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+               const matching::SegmentMotionParameters& parameters, const std::vector<int>& attached,
+               const JointResult& result)
+{
+  const auto clusters = result.cluster_motions.size ();
+  FreeSpaceEvidence evidence{std::vector<int> (clusters, 0), std::vector<int> (clusters, 0)};
+  const matching::RangeProfile view = matching::makeRangeProfile (target);
+  const matching::BreakpointDistance breakpoint =
+      matching::breakpointDistance (view, parameters.breakpoint_angle, parameters.range_noise);
+  for (std::size_t i = 0; i < attached.size (); ++i) {
+    const int l = attached[i];
+    if (l == kOutlierCluster || l == result.static_cluster)
+      continue;
+    const Eigen::Vector2d moved = result.cluster_motions[l] * source.col (static_cast<Eigen::Index> (i));
+    evidence.seen_through[l] += matching::seesThrough (view, moved, breakpoint) ? 1 : 0;
+    evidence.matched[l] += result.source_cluster[i] == l && result.source_match[i] != kNoMatch ? 1 : 0;
+  }
+  return evidence;
+}
+
+}  // namespace
+
+int
+removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  detail::checkResultAgainstTarget ("removeClustersTheTargetSeesThrough", target, result);
+  if (result.source_cluster.size () != static_cast<std::size_t> (source.cols ()))
+    throw std::invalid_argument ("[pcl_crf::joint::removeClustersTheTargetSeesThrough] " +
+                                 std::to_string (result.source_cluster.size ()) + " clusters for " +
+                                 std::to_string (source.cols ()) + " source points: give one per point");
+  if (result.static_cluster < 0 || result.cluster_motions.size () < 2)
+    return 0;
+  const std::vector<int> attached = attachedClusters (
+      source, matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
+      result.source_cluster);
+  const FreeSpaceEvidence evidence = weighEvidence (source, target, parameters, attached, result);
+  std::vector<bool> removed (result.cluster_motions.size (), false);
+  int count = 0;
+  for (std::size_t l = 0; l < removed.size (); ++l)
+    if (evidence.seen_through[l] > evidence.matched[l]) {  // refuted by more points than support it
+      removed[l] = true;
+      ++count;
+    }
+  if (count > 0)
+    detail::removeClusters (removed, result);
+  return count;
+}
+
+}  // namespace joint
+}  // namespace pcl_crf
