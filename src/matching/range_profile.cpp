@@ -151,8 +151,13 @@ seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double b
   return seesThrough (profile, point, breakpointDistance (profile, breakpoint_angle, range_noise));
 }
 
+namespace {
+
+/** seesThrough () and seesThroughToAReturn (): \a empty_beams_free says whether a
+ *  direction without a return within one step counts as seen through. */
 bool
-seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
+                  bool empty_beams_free)
 {
   const Eigen::Index m = profile.bearings.size ();
   const double step = profile.step;
@@ -179,7 +184,21 @@ seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const Br
         return false;
     }
   }
-  return near_return || range + margin < profile.max_range;
+  return near_return || (empty_beams_free && range + margin < profile.max_range);
+}
+
+}  // namespace
+
+bool
+seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
+  return seesThroughPoint (profile, point, distance, true);
+}
+
+bool
+seesThroughToAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
+  return seesThroughPoint (profile, point, distance, false);
 }
 
 }  // namespace matching

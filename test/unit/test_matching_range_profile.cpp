@@ -11,6 +11,7 @@ namespace {
 
 using pcl_crf::matching::makeRangeProfile;
 using pcl_crf::matching::seesThrough;
+using pcl_crf::matching::seesThroughToAReturn;
 
 constexpr double kDegree = M_PI / 180.0;
 constexpr double kLambda = 10.0 * kDegree;  // breakpoint angle
@@ -90,6 +91,23 @@ TEST (RangeProfile, DirectionsWithoutReturnsAreFreeUpToTheFarthestReturn)
   // A dropped beam is no opening: at −20.2° the return at −21° (5.356 m) is within a step.
   EXPECT_FALSE (seesThrough (profile, polar (-20.2, 5.2), kLambda, kNoise));
   EXPECT_TRUE (seesThrough (profile, polar (-20.2, 4.0), kLambda, kNoise));
+}
+
+TEST (RangeProfile, OnTheEvidenceOfReturnsOnlyADirectionWithoutReturnsSaysNothing)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  const auto distance = pcl_crf::matching::breakpointDistance (profile, kLambda, kNoise);
+  // Where returns lie within a step, as seesThrough ().
+  EXPECT_TRUE (seesThroughToAReturn (profile, polar (0.5, 3.0), distance));
+  EXPECT_FALSE (seesThroughToAReturn (profile, polar (0.5, 4.8), distance));
+  EXPECT_TRUE (seesThroughToAReturn (profile, polar (9.5, 3.0), distance));
+  EXPECT_TRUE (seesThroughToAReturn (profile, polar (-20.2, 4.0), distance));
+  // In the opening (no return within a step) seesThrough () says free, this says nothing.
+  EXPECT_TRUE (seesThrough (profile, polar (15.0, 5.0), distance));
+  EXPECT_FALSE (seesThroughToAReturn (profile, polar (15.0, 5.0), distance));
+  EXPECT_FALSE (seesThroughToAReturn (profile, polar (15.0, 1.0), distance));
+  // Outside the field of view neither does.
+  EXPECT_FALSE (seesThroughToAReturn (profile, polar (60.0, 1.0), distance));
 }
 
 TEST (RangeProfile, NothingOutsideTheFieldOfViewWasSeenThrough)

@@ -126,9 +126,12 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
  *  Last, clusters whose matches mostly repeat target points the static world explains
- *  are removed (removeClustersTheStaticWorldExplains ()), and objects the static
- *  motion puts where the source saw through get clusters of their own
- *  (separateObjectsInFreeSpace ()).
+ *  are removed (removeClustersTheStaticWorldExplains ()), and so are clusters with more
+ *  points the target saw through under their motion than matched points
+ *  (removeClustersTheTargetSeesThrough ()); then objects the static motion puts where
+ *  the source saw through get clusters of their own (separateObjectsInFreeSpace ()),
+ *  and so do points that moved out of where the static motion puts them, paired with
+ *  points that moved in (separatePointsTheTargetSeesThrough ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -199,6 +202,34 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
  *  \a source, or a match is not a target point. */
 int
 removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Gives the static world's and the unclustered points that moved clusters of their
+ *  own: a source point the static motion puts where the target sensor saw through to a
+ *  return farther away (matching::seesThroughToAReturn (), the breakpoint distance of
+ *  \a parameters) is no longer there, so it moved out; a target point the inverse motion
+ *  puts where the source saw through to a return moved in, unless its target segment
+ *  holds a point a moving cluster is matched to (that object after it moved). A scan's moved points group by
+ *  their segment (matching::segmentScan ()), and a moved-out group pairs with the
+ *  moved-in group whose centroid (in the target frame) is nearest to its own when it is
+ *  that group's nearest too, within max_displacement: one object seen before and after
+ *  it moved, down to a single point (a pedestrian far away). Each pair becomes a new
+ *  cluster of the static motion shifted by the centroids' displacement; its points take
+ *  the moved-in group's point nearest to where that motion puts them within its overlap
+ *  radius (matching::overlapRadius ()), or no match. A moved-out group without a
+ *  counterpart (it left the view or hid) stays: there is no motion to give it. Beams
+ *  without a return are no evidence here (real lasers drop returns where the scene is
+ *  not free).
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the breakpoint angle, range noise, overlap radius and
+ *  max_displacement (the matcher's segment parameters, limitToInterval () for the pair)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of clusters added (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or with
+ *  \a source, or a match is not a target point. */
+int
+separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Separates from the static world the objects its motion puts where the source

@@ -40,6 +40,10 @@ struct JointParameters
   /** true (default): objects the static motion puts where the source saw through get a
    *  cluster of their own (separateObjectsInFreeSpace ()). */
   bool separate_objects_in_free_space = true;
+  /** true (default): points that moved out of where the static motion puts them, paired
+   *  with points that moved in, get clusters of their own
+   *  (separatePointsTheTargetSeesThrough ()). */
+  bool separate_points_the_target_sees_through = true;
 };
 
 /** \brief \throws std::invalid_argument naming the first setting out of range. */

@@ -65,5 +65,13 @@ breakpointDistance (const RangeProfile& profile, double breakpoint_angle, double
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
 
+/** \brief seesThrough () on the evidence of returns only: true when the point lies inside
+ *  the field of view, some return lies within one step of its bearing and every such
+ *  return lies farther than it by more than the breakpoint distance. A direction without
+ *  a return says nothing here: real lasers drop returns (dark, glossy or glass surfaces)
+ *  where the scene is not free. */
+bool
+seesThroughToAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
+
 }  // namespace matching
 }  // namespace pcl_crf

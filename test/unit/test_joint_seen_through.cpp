@@ -15,6 +15,7 @@ using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::removeClustersTheTargetSeesThrough;
+using pcl_crf::joint::separatePointsTheTargetSeesThrough;
 
 constexpr double kDegree = M_PI / 180.0;
 
@@ -57,6 +58,15 @@ rayCast (const std::vector<Surface>& surfaces, std::vector<int>& objects)
   return scan;
 }
 
+/** The point of \a scan nearest to \a point. */
+int
+nearestPoint (const Eigen::Matrix2Xd& scan, const Eigen::Vector2d& point)
+{
+  Eigen::Index j;
+  (scan.colwise () - point).colwise ().squaredNorm ().minCoeff (&j);
+  return static_cast<int> (j);
+}
+
 constexpr int kWall = 0, kCar = 1, kBoard = 2;
 
 /** A wall along y = 8 m; a car along y = 4 m that drives 0.5 m along x; a board along
@@ -70,15 +80,6 @@ struct Scene
   {
     source = rayCast ({{8.0, -20.0, 20.0, kWall}, {4.0, 0.5, 1.5, kCar}, {3.0, -2.0, -1.0, kBoard}}, source_object);
     target = rayCast ({{8.0, -20.0, 20.0, kWall}, {4.0, 1.0, 2.0, kCar}}, target_object);
-  }
-
-  /** The target point nearest to \a point. */
-  int
-  nearestTarget (const Eigen::Vector2d& point) const
-  {
-    Eigen::Index j;
-    (target.colwise () - point).colwise ().squaredNorm ().minCoeff (&j);
-    return static_cast<int> (j);
   }
 };
 
@@ -105,7 +106,7 @@ sceneResult (const Scene& scene, const Rigid2d& T_board, int board_matched)
     result.source_cluster.push_back (cluster);
     result.source_match.push_back (cluster == kOutlierCluster
                                        ? kNoMatch
-                                       : scene.nearestTarget (result.cluster_motions[cluster] * scene.source.col (i)));
+                                       : nearestPoint (scene.target, result.cluster_motions[cluster] * scene.source.col (i)));
   }
   return result;
 }
@@ -189,6 +190,137 @@ TEST (JointRefutedClusters, RejectsInconsistentResults)
   JointResult match = sceneResult (scene, translation (0.0, 2.0), 3);
   match.source_match[0] = static_cast<int> (scene.target.cols ());
   EXPECT_THROW (removeClustersTheTargetSeesThrough (scene.source, scene.target, parameters, match),
+                std::invalid_argument);
+}
+
+constexpr int kWalkerA = 1, kWalkerB = 2, kWalkerC = 3;
+
+/** A wall along y = 8 m and three pedestrians 0.2 m wide: A at y = 4 m steps 0.5 m to the
+ *  right, B at y = 5 m 0.4 m to the left, and C at y = 3 m hides (the target has none). */
+struct Walkers
+{
+  Eigen::Matrix2Xd source, target;
+  std::vector<int> source_object, target_object;
+
+  Walkers ()
+  {
+    source = rayCast ({{8.0, -20.0, 20.0, kWall},
+                       {4.0, -0.1, 0.1, kWalkerA},
+                       {5.0, -3.1, -2.9, kWalkerB},
+                       {3.0, 2.9, 3.1, kWalkerC}},
+                      source_object);
+    target = rayCast ({{8.0, -20.0, 20.0, kWall}, {4.0, 0.4, 0.6, kWalkerA}, {5.0, -3.5, -3.3, kWalkerB}},
+                      target_object);
+  }
+
+  /** Every source point in the static world (identity), matched to its nearest target point. */
+  JointResult
+  allStatic () const
+  {
+    JointResult result;
+    result.cluster_motions = {Rigid2d::Identity ()};
+    result.static_cluster = 0;
+    for (Eigen::Index i = 0; i < source.cols (); ++i) {
+      result.source_cluster.push_back (0);
+      result.source_match.push_back (nearestPoint (target, source.col (i)));
+    }
+    result.cluster_sizes = {static_cast<int> (source.cols ())};
+    return result;
+  }
+};
+
+/** The cluster every point of \a object is in, or -2 when its points are in several. */
+int
+clusterOf (const std::vector<int>& objects, int object, const JointResult& result)
+{
+  int cluster = -3;
+  for (std::size_t i = 0; i < objects.size (); ++i)
+    if (objects[i] == object)
+      cluster = cluster == -3 || cluster == result.source_cluster[i] ? result.source_cluster[i] : -2;
+  return cluster;
+}
+
+TEST (JointMovedPoints, PointsThatMovedOutPairedWithPointsThatMovedInGetAClusterEach)
+{
+  const Walkers scene;
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = scene.allStatic ();
+  ASSERT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 2);
+  ASSERT_EQ (result.cluster_motions.size (), 3u);
+  EXPECT_EQ (result.static_cluster, 0);
+  EXPECT_EQ (clusterOf (scene.source_object, kWall, result), 0);
+  EXPECT_EQ (clusterOf (scene.source_object, kWalkerC, result), 0);  // hidden: no motion to give it
+  const int a = clusterOf (scene.source_object, kWalkerA, result);
+  const int b = clusterOf (scene.source_object, kWalkerB, result);
+  ASSERT_GT (a, 0);
+  ASSERT_GT (b, 0);
+  EXPECT_NE (a, b);
+  // The centroids' displacement, within a beam spacing along the walker (the beams
+  // sample it at other places before and after): 0.035 m for A, 0.06 m for B.
+  EXPECT_NEAR (result.cluster_motions[a].translation ().x (), 0.5, 0.035);
+  EXPECT_NEAR (result.cluster_motions[a].translation ().y (), 0.0, 1e-9);
+  EXPECT_NEAR (result.cluster_motions[b].translation ().x (), -0.4, 0.06);
+  EXPECT_NEAR (result.cluster_motions[b].translation ().y (), 0.0, 1e-9);
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
+    if (scene.source_object[i] == kWalkerA) {  // matched to the walker where it went
+      ASSERT_NE (result.source_match[i], kNoMatch) << i;
+      EXPECT_EQ (scene.target_object[result.source_match[i]], kWalkerA) << i;
+    }
+}
+
+TEST (JointMovedPoints, NothingMovedFartherThanMaxDisplacementOrWithoutAReturnBehindIt)
+{
+  const Walkers scene;
+  pcl_crf::matching::SegmentMotionParameters parameters;
+  parameters.max_displacement = 0.45;  // A's 0.5 m step is too far, B's 0.4 m is not
+  JointResult result = scene.allStatic ();
+  EXPECT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 1);
+  EXPECT_EQ (clusterOf (scene.source_object, kWalkerA, result), 0);
+  EXPECT_EQ (clusterOf (scene.source_object, kWalkerB, result), 1);
+
+  // Without the wall behind them, the beams that passed where the walkers were return
+  // nothing: no evidence that they moved.
+  std::vector<int> source_object, target_object;
+  const Eigen::Matrix2Xd source = rayCast ({{4.0, -0.1, 0.1, kWalkerA}, {5.0, -3.1, -2.9, kWalkerB}}, source_object);
+  const Eigen::Matrix2Xd target = rayCast ({{4.0, 0.4, 0.6, kWalkerA}, {5.0, -3.5, -3.3, kWalkerB}}, target_object);
+  JointResult open;
+  open.cluster_motions = {Rigid2d::Identity ()};
+  open.static_cluster = 0;
+  open.source_cluster.assign (static_cast<std::size_t> (source.cols ()), 0);
+  open.source_match.assign (static_cast<std::size_t> (source.cols ()), kNoMatch);
+  EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, pcl_crf::matching::SegmentMotionParameters (), open),
+             0);
+}
+
+TEST (JointMovedPoints, MovingClustersKeepTheirPointsAndBadResultsAreRejected)
+{
+  const Walkers scene;
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  // A already has a cluster of its own, with its motion and matches: its points stay
+  // there, and its target points are explained (C, which hid, does not take them).
+  JointResult result = scene.allStatic ();
+  result.cluster_motions.push_back (translation (0.5, 0.0));
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
+    if (scene.source_object[i] == kWalkerA) {
+      result.source_cluster[i] = 1;
+      result.source_match[i] = nearestPoint (scene.target, result.cluster_motions[1] * scene.source.col (i));
+    }
+  const std::vector<int> a_matches = result.source_match;
+  EXPECT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 1);  // B only
+  EXPECT_EQ (clusterOf (scene.source_object, kWalkerC, result), 0);
+  EXPECT_EQ (clusterOf (scene.source_object, kWalkerA, result), 1);
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
+    if (scene.source_object[i] == kWalkerA)
+      EXPECT_EQ (result.source_match[i], a_matches[i]) << i;
+  EXPECT_EQ (result.cluster_motions.size (), 3u);
+
+  JointResult no_static = scene.allStatic ();
+  no_static.static_cluster = -1;
+  EXPECT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, no_static), 0);
+  JointResult short_result = scene.allStatic ();
+  short_result.source_cluster.pop_back ();
+  short_result.source_match.pop_back ();
+  EXPECT_THROW (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, short_result),
                 std::invalid_argument);
 }
 
