@@ -22,6 +22,12 @@ numberLargestFirst (JointResult& result);
 void
 checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
 
+/** checkResultAgainstTarget (), and \throws std::invalid_argument, naming \a function, when
+ *  the result has not one cluster per point of \a source. */
+void
+checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                         const JointResult& result);
+
 /** Removes the clusters marked in \a removed (one flag per cluster): their points become
  *  outliers (kNoMatch, kOutlierCluster), the others are renumbered largest first. */
 void

@@ -474,10 +474,7 @@ int
 separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                             const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
-  detail::checkResultAgainstTarget ("separateObjectsInFreeSpace", target, result);
-  if (static_cast<Eigen::Index> (result.source_cluster.size ()) != source.cols ())
-    throw std::invalid_argument ("[pcl_crf::joint::separateObjectsInFreeSpace] " + std::to_string (source.cols ()) +
-                                 " source points but " + std::to_string (result.source_cluster.size ()) + " clusters");
+  detail::checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
   if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
     return 0;
   FreeSpaceScene scene = makeScene (source, target, parameters);

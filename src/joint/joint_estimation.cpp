@@ -275,6 +275,17 @@ detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& 
 }
 
 void
+detail::checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                 const JointResult& result)
+{
+  checkResultAgainstTarget (function, target, result);
+  if (static_cast<Eigen::Index> (result.source_cluster.size ()) != source.cols ())
+    throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + std::to_string (source.cols ()) +
+                                 " source points but " + std::to_string (result.source_cluster.size ()) +
+                                 " clusters: give one per point");
+}
+
+void
 associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
                               const std::vector<int>& points, const std::vector<int>& cluster,
                               const std::vector<Rigid2d>& motions, std::vector<int>& source_match)

@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -140,11 +138,7 @@ int
 separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
-  detail::checkResultAgainstTarget ("separatePointsTheTargetSeesThrough", target, result);
-  if (result.source_cluster.size () != static_cast<std::size_t> (source.cols ()))
-    throw std::invalid_argument ("[pcl_crf::joint::separatePointsTheTargetSeesThrough] " +
-                                 std::to_string (result.source_cluster.size ()) + " clusters for " +
-                                 std::to_string (source.cols ()) + " source points: give one per point");
+  detail::checkResultAgainstScans ("separatePointsTheTargetSeesThrough", source, target, result);
   if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];

@@ -4,8 +4,6 @@
 
 #include "cluster_numbering.h"
 
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -75,11 +73,7 @@ int
 removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
-  detail::checkResultAgainstTarget ("removeClustersTheTargetSeesThrough", target, result);
-  if (result.source_cluster.size () != static_cast<std::size_t> (source.cols ()))
-    throw std::invalid_argument ("[pcl_crf::joint::removeClustersTheTargetSeesThrough] " +
-                                 std::to_string (result.source_cluster.size ()) + " clusters for " +
-                                 std::to_string (source.cols ()) + " source points: give one per point");
+  detail::checkResultAgainstScans ("removeClustersTheTargetSeesThrough", source, target, result);
   if (result.static_cluster < 0 || result.cluster_motions.size () < 2)
     return 0;
   const std::vector<int> attached = attachedClusters (
