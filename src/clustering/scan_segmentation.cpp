@@ -39,6 +39,25 @@ closestLabelled (const std::vector<int>& segment, const std::vector<bool>& has_l
   return closest;
 }
 
+/** Every point without a label (\a has_label false) takes the label in \a labels of the
+ *  nearer of the closest labelled points before and after it on its segment, if any. */
+void
+fillFromNearestLabelled (const Eigen::Matrix2Xd& scan, const std::vector<int>& segment,
+                         const std::vector<bool>& has_label, std::vector<int>& labels)
+{
+  const std::vector<Eigen::Index> before = closestLabelled (segment, has_label, -1);
+  const std::vector<Eigen::Index> after = closestLabelled (segment, has_label, +1);
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+  {
+    if (has_label[i])
+      continue;
+    const double d_before = before[i] < 0 ? kInf : (scan.col (before[i]) - scan.col (i)).squaredNorm ();
+    const double d_after = after[i] < 0 ? kInf : (scan.col (after[i]) - scan.col (i)).squaredNorm ();
+    if (d_before < kInf || d_after < kInf)
+      labels[i] = labels[d_before <= d_after ? before[i] : after[i]];
+  }
+}
+
 }  // namespace
 
 std::vector<int>
@@ -82,19 +101,25 @@ completeLabels (const Eigen::Matrix2Xd& scan, const std::vector<int>& labelled_i
     result[i] = labels[k];
     has_label[i] = true;
   }
-  const std::vector<int> segment = segmentByDistance (scan, break_distance, 0);
-  const std::vector<Eigen::Index> before = closestLabelled (segment, has_label, -1);
-  const std::vector<Eigen::Index> after = closestLabelled (segment, has_label, +1);
-  for (Eigen::Index i = 0; i < scan.cols (); ++i)
-  {
-    if (has_label[i])
-      continue;
-    const double d_before = before[i] < 0 ? kInf : (scan.col (before[i]) - scan.col (i)).squaredNorm ();
-    const double d_after = after[i] < 0 ? kInf : (scan.col (after[i]) - scan.col (i)).squaredNorm ();
-    if (d_before < kInf || d_after < kInf)
-      result[i] = result[d_before <= d_after ? before[i] : after[i]];
-  }
+  fillFromNearestLabelled (scan, segmentByDistance (scan, break_distance, 0), has_label, result);
   return result;
+}
+
+std::vector<int>
+completeLabelsWithinSegments (const Eigen::Matrix2Xd& scan, const std::vector<int>& segment,
+                              const std::vector<int>& labels, int unlabelled)
+{
+  const auto n = static_cast<std::size_t> (scan.cols ());
+  if (segment.size () != n || labels.size () != n)
+    throw std::invalid_argument ("[pcl_crf::clustering::completeLabelsWithinSegments] " + std::to_string (n) +
+                                 " points, " + std::to_string (segment.size ()) + " segment indices and " +
+                                 std::to_string (labels.size ()) + " labels: give one of each per point");
+  std::vector<bool> has_label (n);
+  for (std::size_t i = 0; i < n; ++i)
+    has_label[i] = labels[i] != unlabelled;
+  std::vector<int> completed (labels);
+  fillFromNearestLabelled (scan, segment, has_label, completed);
+  return completed;
 }
 
 }  // namespace clustering

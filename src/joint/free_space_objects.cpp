@@ -40,16 +40,6 @@ struct FreeSpaceScene
   KnnIndex target_points;
 };
 
-std::vector<int>
-segmentOfPoints (const std::vector<matching::ScanSegment>& segments, Eigen::Index points)
-{
-  std::vector<int> of (static_cast<std::size_t> (points), -1);
-  for (std::size_t s = 0; s < segments.size (); ++s)
-    for (int i = segments[s].begin; i < segments[s].end; ++i)
-      of[i] = static_cast<int> (s);
-  return of;
-}
-
 /** The part of the scene every pair needs: what the source saw and the target's
  *  segments, to find the segments with points the source saw through. */
 FreeSpaceScene
@@ -73,8 +63,8 @@ completeScene (FreeSpaceScene& scene)
   scene.target_breakpoint =
       matching::breakpointDistance (scene.target_view, parameters.breakpoint_angle, parameters.range_noise);
   scene.source_segments = matching::segmentScan (scene.source, parameters.breakpoint_angle, parameters.range_noise);
-  scene.source_segment_of = segmentOfPoints (scene.source_segments, scene.source.cols ());
-  scene.target_segment_of = segmentOfPoints (scene.target_segments, scene.target.cols ());
+  scene.source_segment_of = matching::segmentOfEachPoint (scene.source_segments, scene.source.cols ());
+  scene.target_segment_of = matching::segmentOfEachPoint (scene.target_segments, scene.target.cols ());
   scene.target_spacing.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   scene.target_radius.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   for (const matching::ScanSegment& segment : scene.target_segments)

@@ -1,3 +1,4 @@
+#include <pcl_crf/clustering/scan_segmentation.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/range_profile.h>
 #include <pcl_crf/matching/scan_segments.h>
@@ -10,33 +11,6 @@ namespace pcl_crf {
 namespace joint {
 
 namespace {
-
-/** Per source point: its cluster, or for an outlier the cluster of the nearer of the
- *  closest clustered points before and after it on its segment (kOutlierCluster when its
- *  segment has none): the cluster whose motion the point would share. */
-std::vector<int>
-attachedClusters (const Eigen::Matrix2Xd& source, const std::vector<matching::ScanSegment>& segments,
-                  const std::vector<int>& cluster)
-{
-  std::vector<int> attached (cluster);
-  for (const matching::ScanSegment& segment : segments)
-    for (int i = segment.begin; i < segment.end; ++i) {
-      if (cluster[i] != kOutlierCluster)
-        continue;
-      int before = i - 1, after = i + 1;
-      while (before >= segment.begin && cluster[before] == kOutlierCluster)
-        --before;
-      while (after < segment.end && cluster[after] == kOutlierCluster)
-        ++after;
-      const double d_before = before >= segment.begin ? (source.col (before) - source.col (i)).squaredNorm () : -1.0;
-      const double d_after = after < segment.end ? (source.col (after) - source.col (i)).squaredNorm () : -1.0;
-      if (d_before >= 0.0 && (d_after < 0.0 || d_before <= d_after))
-        attached[i] = cluster[before];
-      else if (d_after >= 0.0)
-        attached[i] = cluster[after];
-    }
-  return attached;
-}
 
 /** Per cluster: how many points of its extent (\a attached) the target sensor saw
  *  through under its motion, and how many of its own points are matched. */
@@ -76,9 +50,13 @@ removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
   detail::checkResultAgainstScans ("removeClustersTheTargetSeesThrough", source, target, result);
   if (result.static_cluster < 0 || result.cluster_motions.size () < 2)
     return 0;
-  const std::vector<int> attached = attachedClusters (
-      source, matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
-      result.source_cluster);
+  // Per source point: its cluster, or for an outlier the cluster whose motion it would
+  // share, that of the nearer closest clustered point on its source segment.
+  const std::vector<int> attached = clustering::completeLabelsWithinSegments (
+      source,
+      matching::segmentOfEachPoint (matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
+                                    source.cols ()),
+      result.source_cluster, kOutlierCluster);
   const FreeSpaceEvidence evidence = weighEvidence (source, target, parameters, attached, result);
   std::vector<bool> removed (result.cluster_motions.size (), false);
   int count = 0;

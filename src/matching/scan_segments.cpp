@@ -51,6 +51,16 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
   return segments;
 }
 
+std::vector<int>
+segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points)
+{
+  std::vector<int> of (static_cast<std::size_t> (points), -1);
+  for (std::size_t s = 0; s < segments.size (); ++s)
+    for (int i = segments[s].begin; i < segments[s].end; ++i)
+      of[i] = static_cast<int> (s);
+  return of;
+}
+
 SegmentEnds
 objectEnds (const Eigen::Matrix2Xd& points, const ScanSegment& segment)
 {

@@ -47,6 +47,18 @@ TEST (ClusteringSegmentation, CompletesLabelsFromTheNearestLabelledPointOfTheSeg
   EXPECT_THROW (completeLabels (scan, {1}, {4, 5}, 0.5, 7), std::invalid_argument);
 }
 
+TEST (ClusteringSegmentation, CompletesLabelsWithinGivenSegments)
+{
+  // Segments {0–4} and {5, 6}; −1 marks the points to complete. The second segment has
+  // no labelled point and keeps −1; a tie (point 2, 0.15 m from both) takes the one before.
+  const Eigen::Matrix2Xd scan = pointsOnX ({0.0, 0.1, 0.25, 0.4, 0.5, 3.0, 3.1});
+  const std::vector<int> segment{0, 0, 0, 0, 0, 1, 1};
+  EXPECT_EQ (completeLabelsWithinSegments (scan, segment, {-1, 4, -1, 5, -1, -1, -1}, -1),
+             (std::vector<int>{4, 4, 4, 5, 5, -1, -1}));
+  EXPECT_THROW (completeLabelsWithinSegments (scan, {0, 0}, std::vector<int> (7, -1), -1), std::invalid_argument);
+  EXPECT_THROW (completeLabelsWithinSegments (scan, segment, {4, 5}, -1), std::invalid_argument);
+}
+
 TEST (ClusteringMerge, EffectiveClusterCountFollowsEq8)
 {
   EXPECT_DOUBLE_EQ (effectiveClusterCount (Eigen::Vector3d (1.0, 0.0, 0.0)), 1.0);

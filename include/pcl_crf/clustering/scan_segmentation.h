@@ -49,5 +49,17 @@ std::vector<int>
 completeLabels (const Eigen::Matrix2Xd& scan, const std::vector<int>& labelled_index,
                 const std::vector<int>& labels, double break_distance, int default_label);
 
+/** \brief completeLabels () within segments given per point: every point labelled
+ *  \a unlabelled takes the label of the nearer (in space) of the closest labelled points
+ *  before and after it in scan order on its segment, and keeps \a unlabelled when its
+ *  segment has none.
+ *  \param[in] scan 2 x N scan in scan order [m]
+ *  \param[in] segment the segment of every point (runs of equal values)
+ *  \param[in] labels the label of every point, \a unlabelled for those to complete
+ *  \throws std::invalid_argument when \a segment or \a labels is not one per point. */
+std::vector<int>
+completeLabelsWithinSegments (const Eigen::Matrix2Xd& scan, const std::vector<int>& segment,
+                              const std::vector<int>& labels, int unlabelled);
+
 }  // namespace clustering
 }  // namespace pcl_crf

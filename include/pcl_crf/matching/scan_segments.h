@@ -34,6 +34,11 @@ struct ScanSegment
 std::vector<ScanSegment>
 segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise);
 
+/** \brief The index into \a segments of every one of \a points points (−1 for a point
+ *  in none of them). */
+std::vector<int>
+segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points);
+
 /** \brief Which ends of a segment are an object's ends rather than an occlusion
  *  or the border of the scan: the point across the breakpoint lies farther from
  *  the sensor (background behind the object's end).
