@@ -342,6 +342,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     removeClustersTheTargetSeesThrough (source, target, segments, result);
   if (parameters.separate_objects_in_free_space)
     separateObjectsInFreeSpace (source, target, segments, result);
+  if (parameters.separate_segments_the_target_sees_through)
+    separateSegmentsTheTargetSeesThrough (source, target, segments, parameters.segment_min_points_seen_through, result);
   if (parameters.separate_points_the_target_sees_through)
     separatePointsTheTargetSeesThrough (source, target, segments, result);
   return result;

@@ -85,6 +85,8 @@ validateParameters (const JointParameters& p)
     bad ("min_cluster_points must be >= 0 (0: the model's)");
   if (!(p.max_average_neff > 1.0))
     bad ("max_average_neff must be > 1");
+  if (p.segment_min_points_seen_through < 1)
+    bad ("segment_min_points_seen_through must be >= 1");
   validateLadderOptions (p.inference);
   clustering::validateParameters (p.initial_clustering);
 }

@@ -190,6 +190,15 @@ seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, con
 }  // namespace
 
 bool
+inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point)
+{
+  const Eigen::Index m = profile.bearings.size ();
+  if (m < 2)
+    return false;
+  return profile.full_circle || bearingFrom (profile, point) <= profile.bearings (m - 1);
+}
+
+bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
 {
   return seesThroughPoint (profile, point, distance, true);

@@ -13,28 +13,6 @@ namespace {
 /** Points of a segment whose overlap scores a hypothesis, evenly spread. */
 constexpr int kScoringSamples = 10;
 
-/** Candidate translations of a source segment: its object ends onto the same
- *  object ends of nearby target segments. */
-void
-endAlignments (const Eigen::Vector2d& start, const Eigen::Vector2d& finish, const SegmentEnds& trusted,
-               const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
-               const SegmentMotionParameters& parameters, std::vector<Eigen::Vector2d>& hypotheses)
-{
-  hypotheses.assign (1, Eigen::Vector2d::Zero ());  // the current motion itself
-  const double max_squared = parameters.max_displacement * parameters.max_displacement;
-  for (const ScanSegment& t : target_segments) {
-    if (t.size () < parameters.min_segment_points)
-      continue;
-    const SegmentEnds target_trusted = objectEnds (target_scan, t);
-    const Eigen::Vector2d to_start = target_scan.col (t.begin) - start;
-    const Eigen::Vector2d to_finish = target_scan.col (t.end - 1) - finish;
-    if (trusted.start && target_trusted.start && to_start.squaredNorm () <= max_squared)
-      hypotheses.push_back (to_start);
-    if (trusted.finish && target_trusted.finish && to_finish.squaredNorm () <= max_squared)
-      hypotheses.push_back (to_finish);
-  }
-}
-
 /** Indices of up to kScoringSamples evenly spread points of a segment. */
 std::vector<int>
 scoringSamples (const ScanSegment& segment)
@@ -144,6 +122,27 @@ pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin
   return spacing;
 }
 
+std::vector<Eigen::Vector2d>
+endAlignments (const Eigen::Vector2d& start, const Eigen::Vector2d& finish, const SegmentEnds& trusted,
+               const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
+               const SegmentMotionParameters& parameters)
+{
+  std::vector<Eigen::Vector2d> hypotheses (1, Eigen::Vector2d::Zero ());  // the current motion itself
+  const double max_squared = parameters.max_displacement * parameters.max_displacement;
+  for (const ScanSegment& t : target_segments) {
+    if (t.size () < parameters.min_segment_points)
+      continue;
+    const SegmentEnds target_trusted = objectEnds (target_scan, t);
+    const Eigen::Vector2d to_start = target_scan.col (t.begin) - start;
+    const Eigen::Vector2d to_finish = target_scan.col (t.end - 1) - finish;
+    if (trusted.start && target_trusted.start && to_start.squaredNorm () <= max_squared)
+      hypotheses.push_back (to_start);
+    if (trusted.finish && target_trusted.finish && to_finish.squaredNorm () <= max_squared)
+      hypotheses.push_back (to_finish);
+  }
+  return hypotheses;
+}
+
 SegmentMotions
 segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matrix2Xd& source_current,
                          const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
@@ -167,8 +166,8 @@ segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matri
     SegmentQuery query{segment, {}, scoringSamples (segment), columns, {}, {}};
     query.judged = judgedSamples (query.samples, source_current, view);
     query.radii_squared = sampleRadiiSquared (query.samples, segment, source_scan, parameters);
-    endAlignments (source_current.col (segment.begin), source_current.col (segment.end - 1),
-                   objectEnds (source_scan, segment), target_scan, target_segments, parameters, query.hypotheses);
+    query.hypotheses = endAlignments (source_current.col (segment.begin), source_current.col (segment.end - 1),
+                                      objectEnds (source_scan, segment), target_scan, target_segments, parameters);
 
     columns += static_cast<Eigen::Index> (query.hypotheses.size () * query.samples.size ());
     queries.push_back (std::move (query));

@@ -130,8 +130,10 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  points the target saw through under their motion than matched points
  *  (removeClustersTheTargetSeesThrough ()); then objects the static motion puts where
  *  the source saw through get clusters of their own (separateObjectsInFreeSpace ()),
- *  and so do points that moved out of where the static motion puts them, paired with
- *  points that moved in (separatePointsTheTargetSeesThrough ()).
+ *  segments the static motion slides along themselves whose end the target saw
+ *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
+ *  do points that moved out of where the static motion puts them, paired with points
+ *  that moved in (separatePointsTheTargetSeesThrough ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -231,6 +233,38 @@ removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
 int
 separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Gives a segment the static motion slides along itself a cluster of its own: a
+ *  truck driving alongside maps under the static motion onto its own side in the
+ *  target, all but its trailing end, which lands where the target saw through.
+ *
+ *  For every source segment (matching::segmentScan (), ≥ min_segment_points) wholly in
+ *  the static or the outlier cluster, with at least \a min_seen_through points the
+ *  static motion puts where the target saw through to a return
+ *  (matching::seesThroughToAReturn ()), the shifts that align one of its object ends
+ *  with the same end of a target segment (matching::endAlignments ()) are compared
+ *  with the static motion on the points both keep in the target's field of view
+ *  (matching::inFieldOfView ()). A shift qualifies when it explains (a target point
+ *  within the overlap radius, matching::overlapRadius ()) at least as many of them and
+ *  leaves fewer seen through; of those, the one gaining most explained minus
+ *  seen-through points makes the segment a cluster of the static motion shifted by it,
+ *  each point matched to its nearest target point there within its overlap radius, or
+ *  to none. Beams without a return are no evidence (real lasers drop returns).
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the breakpoint angle, range noise, overlap radius,
+ *  min_segment_points and max_displacement (the matcher's segment parameters,
+ *  limitToInterval () for the pair)
+ *  \param[in] min_seen_through the fewest seen-through points that make a segment worth
+ *  testing (≥ 1; JointParameters::segment_min_points_seen_through)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of clusters added (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or with
+ *  \a source, a match is not a target point, or min_seen_through < 1. */
+int
+separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, int min_seen_through,
+                                      JointResult& result);
 
 /** \brief Separates from the static world the objects its motion puts where the source
  *  sensor saw through: a vehicle driving alongside shows a long side that slides along

@@ -44,6 +44,13 @@ struct JointParameters
    *  with points that moved in, get clusters of their own
    *  (separatePointsTheTargetSeesThrough ()). */
   bool separate_points_the_target_sees_through = true;
+  /** true (default): a static or unclustered segment the target saw through under the
+   *  static motion gets a cluster of its own when sliding it to align its object end
+   *  with a target segment's explains it better (separateSegmentsTheTargetSeesThrough ()). */
+  bool separate_segments_the_target_sees_through = true;
+  /** the fewest points of a segment the target must see through under the static
+   *  motion before a shift of it is sought (one point alone may be range noise). */
+  int segment_min_points_seen_through = 2;
 };
 
 /** \brief \throws std::invalid_argument naming the first setting out of range. */

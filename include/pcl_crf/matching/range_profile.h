@@ -61,6 +61,12 @@ struct BreakpointDistance
 BreakpointDistance
 breakpointDistance (const RangeProfile& profile, double breakpoint_angle, double range_noise);
 
+/** \brief Whether the bearing of \a point lies within the scan's field of view: between its
+ *  first and last return (after its widest gap), anywhere when it goes all round;
+ *  false with fewer than two returns. */
+bool
+inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point);
+
 /** \brief seesThrough () with the breakpoint distance computed once. */
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);

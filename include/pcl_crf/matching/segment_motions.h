@@ -82,6 +82,23 @@ limitToInterval (SegmentMotionParameters parameters, double interval);
 double
 pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end);
 
+/** \brief Candidate translations (target frame) of a source segment whose ends lie at
+ *  \a start and \a finish: the zero translation (the current motion itself) first, then
+ *  every one that puts a trusted object end (objectEnds ()) of the segment onto the same
+ *  trusted end of a target segment (≥ min_segment_points) within max_displacement.
+ *
+ *  \param[in] start the segment's first point moved by the current motion [m]
+ *  \param[in] finish its last point moved by the current motion [m]
+ *  \param[in] trusted which of its ends are object ends (objectEnds () of the source)
+ *  \param[in] target_scan target points [m]
+ *  \param[in] target_segments segmentScan of the target
+ *  \param[in] parameters max_displacement, min_segment_points
+ */
+std::vector<Eigen::Vector2d>
+endAlignments (const Eigen::Vector2d& start, const Eigen::Vector2d& finish, const SegmentEnds& trusted,
+               const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
+               const SegmentMotionParameters& parameters);
+
 /** \brief Per source point: its segment's motion hypothesis and how well it and
  *  the current motion explain the segment.
  *
