@@ -195,7 +195,11 @@ inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point)
   const Eigen::Index m = profile.bearings.size ();
   if (m < 2)
     return false;
-  return profile.full_circle || bearingFrom (profile, point) <= profile.bearings (m - 1);
+  if (profile.full_circle)
+    return true;
+  constexpr double kRounding = 1e-12;  // [rad]: a point on the first return's bearing wraps to just below 2π
+  const double theta = bearingFrom (profile, point);
+  return theta <= profile.bearings (m - 1) || theta >= profile.bearings (0) + kTwoPi - kRounding;
 }
 
 bool

@@ -16,6 +16,7 @@ using pcl_crf::Rigid2d;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::removeClustersTheTargetSeesThrough;
 using pcl_crf::joint::separatePointsTheTargetSeesThrough;
+using pcl_crf::joint::separateSegmentsTheTargetSeesThrough;
 
 constexpr double kDegree = M_PI / 180.0;
 
@@ -65,6 +66,21 @@ nearestPoint (const Eigen::Matrix2Xd& scan, const Eigen::Vector2d& point)
   Eigen::Index j;
   (scan.colwise () - point).colwise ().squaredNorm ().minCoeff (&j);
   return static_cast<int> (j);
+}
+
+/** Every source point in the static world (identity), matched to its nearest target point. */
+JointResult
+allStaticResult (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target)
+{
+  JointResult result;
+  result.cluster_motions = {Rigid2d::Identity ()};
+  result.static_cluster = 0;
+  for (Eigen::Index i = 0; i < source.cols (); ++i) {
+    result.source_cluster.push_back (0);
+    result.source_match.push_back (nearestPoint (target, source.col (i)));
+  }
+  result.cluster_sizes = {static_cast<int> (source.cols ())};
+  return result;
 }
 
 constexpr int kWall = 0, kCar = 1, kBoard = 2;
@@ -213,19 +229,10 @@ struct Walkers
                       target_object);
   }
 
-  /** Every source point in the static world (identity), matched to its nearest target point. */
   JointResult
   allStatic () const
   {
-    JointResult result;
-    result.cluster_motions = {Rigid2d::Identity ()};
-    result.static_cluster = 0;
-    for (Eigen::Index i = 0; i < source.cols (); ++i) {
-      result.source_cluster.push_back (0);
-      result.source_match.push_back (nearestPoint (target, source.col (i)));
-    }
-    result.cluster_sizes = {static_cast<int> (source.cols ())};
-    return result;
+    return allStaticResult (source, target);
   }
 };
 
@@ -322,6 +329,108 @@ TEST (JointMovedPoints, MovingClustersKeepTheirPointsAndBadResultsAreRejected)
   short_result.source_match.pop_back ();
   EXPECT_THROW (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, short_result),
                 std::invalid_argument);
+}
+
+constexpr int kTruck = 1;
+
+/** A wall along y = 8 m and a truck along y = 2 m, x in [1, 6] m, that drives
+ *  \a truck_drive m along itself between the scans (the sensor stands): the static
+ *  motion maps the truck onto its own side in the target, all but its trailing end. */
+struct Alongside
+{
+  Eigen::Matrix2Xd source, target;
+  std::vector<int> source_object, target_object;
+
+  explicit Alongside (double truck_drive)
+  {
+    source = rayCast ({{8.0, -20.0, 20.0, kWall}, {2.0, 1.0, 6.0, kTruck}}, source_object);
+    target = rayCast ({{8.0, -20.0, 20.0, kWall}, {2.0, 1.0 + truck_drive, 6.0 + truck_drive, kTruck}}, target_object);
+  }
+
+  JointResult
+  allStatic () const
+  {
+    return allStaticResult (source, target);
+  }
+};
+
+TEST (JointSlidSegments, ATruckSlidingAlongItselfGetsItsOwnClusterAndMotion)
+{
+  const Alongside scene (1.0);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = scene.allStatic ();
+  ASSERT_EQ (separateSegmentsTheTargetSeesThrough (scene.source, scene.target, parameters, 2, result), 1);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  EXPECT_EQ (clusterOf (scene.source_object, kWall, result), result.static_cluster);
+  const int truck = clusterOf (scene.source_object, kTruck, result);
+  ASSERT_GE (truck, 0);
+  ASSERT_NE (truck, result.static_cluster);
+  // Its object end aligned with the target's: within one beam spacing at that end
+  // (0.5° at 6.3 m along a side seen at 18°: 0.17 m), exactly along the side.
+  EXPECT_NEAR (result.cluster_motions[truck].translation ().x (), 1.0, 0.17);
+  EXPECT_NEAR (result.cluster_motions[truck].translation ().y (), 0.0, 1e-9);
+  EXPECT_TRUE (result.cluster_motions[truck].linear ().isIdentity (1e-12));
+  int matched = 0, truck_points = 0;
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i) {
+    if (scene.source_object[i] != kTruck)
+      continue;
+    ++truck_points;
+    const int j = result.source_match[i];
+    if (j == kNoMatch)
+      continue;
+    ++matched;
+    EXPECT_EQ (scene.target_object[j], kTruck) << i;
+    EXPECT_LT ((scene.target.col (j) - (scene.source.col (i) + Eigen::Vector2d (1.0, 0.0))).norm (), 0.2) << i;
+  }
+  EXPECT_EQ (matched, truck_points);  // every shifted point lands on the target's side
+  EXPECT_EQ (result.cluster_sizes[truck], truck_points);
+}
+
+TEST (JointSlidSegments, AStandingScenePartlyClusteredOrTooLittleSeenThroughIsLeftAlone)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  const Alongside standing (0.0);
+  JointResult result = standing.allStatic ();
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (standing.source, standing.target, parameters, 1, result), 0);
+  EXPECT_EQ (result.cluster_motions.size (), 1u);
+
+  const Alongside driving (1.0);
+  JointResult unchanged = driving.allStatic ();
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (driving.source, driving.target, parameters, 1000, unchanged), 0);
+  // A truck one of whose points is already in a moving cluster is that cluster's to explain.
+  JointResult claimed = driving.allStatic ();
+  claimed.cluster_motions.push_back (translation (1.0, 0.0));
+  const auto first_truck_point =
+      std::find (driving.source_object.begin (), driving.source_object.end (), kTruck) - driving.source_object.begin ();
+  claimed.source_cluster[first_truck_point] = 1;
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (driving.source, driving.target, parameters, 2, claimed), 0);
+  // Too short to be a segment worth sliding.
+  pcl_crf::matching::SegmentMotionParameters long_segments;
+  long_segments.min_segment_points = static_cast<int> (driving.source.cols ()) + 1;
+  JointResult short_segments = driving.allStatic ();
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (driving.source, driving.target, long_segments, 2, short_segments), 0);
+  // A shift beyond max_displacement is never proposed.
+  pcl_crf::matching::SegmentMotionParameters near_only;
+  near_only.max_displacement = 0.5;
+  JointResult far = driving.allStatic ();
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (driving.source, driving.target, near_only, 2, far), 0);
+}
+
+TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)
+{
+  const Alongside scene (1.0);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = scene.allStatic ();
+  EXPECT_THROW (separateSegmentsTheTargetSeesThrough (scene.source, scene.target, parameters, 0, result),
+                std::invalid_argument);
+  JointResult short_result = scene.allStatic ();
+  short_result.source_cluster.pop_back ();
+  short_result.source_match.pop_back ();
+  EXPECT_THROW (separateSegmentsTheTargetSeesThrough (scene.source, scene.target, parameters, 2, short_result),
+                std::invalid_argument);
+  JointResult no_static = scene.allStatic ();
+  no_static.static_cluster = -1;
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (scene.source, scene.target, parameters, 2, no_static), 0);
 }
 
 }  // namespace

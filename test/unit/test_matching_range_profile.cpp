@@ -9,6 +9,7 @@
 
 namespace {
 
+using pcl_crf::matching::inFieldOfView;
 using pcl_crf::matching::makeRangeProfile;
 using pcl_crf::matching::seesThrough;
 using pcl_crf::matching::seesThroughToAReturn;
@@ -215,6 +216,23 @@ TEST (RangeProfile, IrregularBeamsAnswerAsEveryReturnWould)
     }
   EXPECT_GT (seen_through, checked / 4);  // both answers are well represented
   EXPECT_LT (seen_through, 3 * checked / 4);
+}
+
+TEST (RangeProfile, TheFieldOfViewSpansTheReturnsAcrossInnerGapsOrGoesAllRound)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());  // returns over [−45°, 45°]
+  EXPECT_TRUE (inFieldOfView (profile, polar (0.0, 3.0)));
+  EXPECT_TRUE (inFieldOfView (profile, polar (15.0, 30.0)));  // in the opening: still in view
+  EXPECT_TRUE (inFieldOfView (profile, polar (-45.0, 1.0)));
+  EXPECT_FALSE (inFieldOfView (profile, polar (46.0, 3.0)));
+  EXPECT_FALSE (inFieldOfView (profile, polar (-50.0, 3.0)));
+  EXPECT_FALSE (inFieldOfView (profile, polar (180.0, 3.0)));
+
+  Eigen::Matrix2Xd circle (2, 360);
+  for (int k = 0; k < 360; ++k)
+    circle.col (k) = polar (k, 4.0);
+  EXPECT_TRUE (inFieldOfView (makeRangeProfile (circle), polar (-179.5, 9.0)));
+  EXPECT_FALSE (inFieldOfView (makeRangeProfile (wallScan ({0})), polar (0.0, 1.0)));  // one return: no view known
 }
 
 }  // namespace
