@@ -1,7 +1,7 @@
 #pragma once
 // Internal: the numbering and checking of a joint result's clusters (joint_estimation.cpp),
 // shared with the steps that edit a result's clusters (redundant_clusters.cpp,
-// free_space_objects.cpp).
+// refuted_clusters.cpp, free_space_objects.cpp, moved_out_points.cpp, slid_segments.cpp).
 
 #include <pcl_crf/joint/joint_estimation.h>
 
@@ -32,6 +32,22 @@ checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, c
  *  outliers (kNoMatch, kOutlierCluster), the others are renumbered largest first. */
 void
 removeClusters (const std::vector<bool>& removed, JointResult& result);
+
+/** Whether source point \a i of \a result is in the static world or among the outliers
+ *  (the points the free-space steps may give a cluster of their own). */
+inline bool
+inStaticWorldOrOutliers (const JointResult& result, std::size_t i)
+{
+  return result.source_cluster[i] == result.static_cluster || result.source_cluster[i] == kOutlierCluster;
+}
+
+/** Whether a free-space step has anything to separate from the static world: \a result
+ *  has one, and both scans have the two points a range profile and a segment need. */
+inline bool
+canSeparateFromStaticWorld (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  return result.static_cluster >= 0 && source.cols () >= 2 && target.cols () >= 2;
+}
 
 }  // namespace detail
 }  // namespace joint

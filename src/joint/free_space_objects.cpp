@@ -453,7 +453,7 @@ freePoints (const JointResult& result)
 {
   std::vector<int> free;
   for (int i = 0; i < static_cast<int> (result.source_cluster.size ()); ++i)
-    if (result.source_cluster[i] == result.static_cluster || result.source_cluster[i] == kOutlierCluster)
+    if (detail::inStaticWorldOrOutliers (result, static_cast<std::size_t> (i)))
       free.push_back (i);
   return free;
 }
@@ -465,7 +465,7 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
                             const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   detail::checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
-  if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
+  if (!detail::canSeparateFromStaticWorld (source, target, result))
     return 0;
   FreeSpaceScene scene = makeScene (source, target, parameters);
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];

@@ -139,12 +139,12 @@ separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
                                     const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   detail::checkResultAgainstScans ("separatePointsTheTargetSeesThrough", source, target, result);
-  if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
+  if (!detail::canSeparateFromStaticWorld (source, target, result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   std::vector<bool> free (result.source_cluster.size ());
   for (std::size_t i = 0; i < free.size (); ++i)
-    free[i] = result.source_cluster[i] == result.static_cluster || result.source_cluster[i] == kOutlierCluster;
+    free[i] = detail::inStaticWorldOrOutliers (result, i);
   const std::vector<MovedGroup> moved_out =
       groupBySegment (source, matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
                       seenThroughByTheOther (source, target, T_static, parameters, free), T_static);

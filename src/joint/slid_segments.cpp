@@ -7,6 +7,7 @@
 #include "cluster_numbering.h"
 
 #include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -15,24 +16,106 @@ namespace joint {
 
 namespace {
 
-/** What the target scan says of one segment: its points (target frame) are explained
- *  (a target point within their overlap radius) or seen through (to a return farther
- *  away), or neither. */
-struct TargetView
+/** What the target scan says of points in its frame: explained (a target point within
+ *  their overlap radius) or seen through (to a return farther away), or neither. Its
+ *  segments and kd-tree are built on first use: most pairs have no segment to slide. */
+class TargetView
 {
-  matching::RangeProfile profile;
-  matching::BreakpointDistance breakpoint;
-  KnnIndex points;
+public:
+  TargetView (const Eigen::Matrix2Xd& target, const matching::SegmentMotionParameters& parameters)
+    : target_ (target), parameters_ (parameters), profile_ (matching::makeRangeProfile (target)),
+      breakpoint_ (matching::breakpointDistance (profile_, parameters.breakpoint_angle, parameters.range_noise))
+  {
+  }
+
+  bool
+  inView (const Eigen::Vector2d& point) const
+  {
+    return matching::inFieldOfView (profile_, point);
+  }
+
+  bool
+  seesThrough (const Eigen::Vector2d& point) const
+  {
+    return matching::seesThroughToAReturn (profile_, point, breakpoint_);
+  }
+
+  /** The nearest target point of every column of \a points (one batched query). */
+  KnnIndex::Result
+  nearest (const Eigen::Matrix2Xd& points)
+  {
+    if (points_.size () == 0)
+      points_.build (target_);
+    return points_.search (points, 1);
+  }
+
+  const Eigen::Matrix2Xd&
+  target () const
+  {
+    return target_;
+  }
+
+  const std::vector<matching::ScanSegment>&
+  segments ()
+  {
+    if (!segmented_) {
+      segments_ = matching::segmentScan (target_, parameters_.breakpoint_angle, parameters_.range_noise);
+      segmented_ = true;
+    }
+    return segments_;
+  }
+
+private:
+  const Eigen::Matrix2Xd& target_;
+  const matching::SegmentMotionParameters& parameters_;
+  matching::RangeProfile profile_;
+  matching::BreakpointDistance breakpoint_;
+  KnnIndex points_;
+  std::vector<matching::ScanSegment> segments_;
+  bool segmented_ = false;
 };
 
-/** How a shifted and the unshifted static motion fare on the segment points both keep
- *  in the target's field of view (a point leaving it says nothing for or against). */
+/** What the target says of each point of a segment placed by one motion. */
+struct Placement
+{
+  Eigen::Matrix2Xd points;  // target frame
+  KnnIndex::Result nearest;
+  std::vector<bool> in_view, explained, seen_through;
+};
+
+Placement
+place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, TargetView& view)
+{
+  Placement p{std::move (points), {}, {}, {}, {}};
+  p.nearest = view.nearest (p.points);
+  for (Eigen::Index k = 0; k < p.points.cols (); ++k) {
+    p.in_view.push_back (view.inView (p.points.col (k)));
+    p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
+    p.seen_through.push_back (view.seesThrough (p.points.col (k)));
+  }
+  return p;
+}
+
+/** How a shifted placement fares against the static one on the points both keep in
+ *  the target's field of view (a point leaving it says nothing for or against). */
 struct Comparison
 {
   int explained = 0;
   int seen_through = 0;
   int static_explained = 0;
   int static_seen_through = 0;
+
+  Comparison (const Placement& at_static, const Placement& shifted)
+  {
+    for (std::size_t k = 0; k < at_static.in_view.size (); ++k) {
+      if (!at_static.in_view[k] || !shifted.in_view[k])
+        continue;
+      static_explained += at_static.explained[k] ? 1 : 0;
+      explained += shifted.explained[k] ? 1 : 0;
+      static_seen_through += at_static.seen_through[k] ? 1 : 0;
+      seen_through += shifted.seen_through[k] ? 1 : 0;
+    }
+  }
 
   /** explained minus seen-through points, gained over the static motion. */
   int
@@ -49,23 +132,14 @@ struct Comparison
   }
 };
 
-/** Whether every point of \a segment is in the static or the outlier cluster. */
+/** Whether every point of \a segment is in the static world or among the outliers. */
 bool
 outsideMovingClusters (const matching::ScanSegment& segment, const JointResult& result)
 {
   for (int i = segment.begin; i < segment.end; ++i)
-    if (result.source_cluster[i] != result.static_cluster && result.source_cluster[i] != kOutlierCluster)
+    if (!detail::inStaticWorldOrOutliers (result, static_cast<std::size_t> (i)))
       return false;
   return true;
-}
-
-int
-countSeenThrough (const Eigen::Matrix2Xd& moved, const TargetView& view)
-{
-  int seen = 0;
-  for (Eigen::Index k = 0; k < moved.cols (); ++k)
-    seen += matching::seesThroughToAReturn (view.profile, moved.col (k), view.breakpoint) ? 1 : 0;
-  return seen;
 }
 
 /** The squared overlap radius of every point of \a segment. */
@@ -81,37 +155,44 @@ squaredRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segme
   return radii;
 }
 
-/** The segment's points under the static motion (\a at_static) against the same points
- *  shifted by \a shift, with their nearest target points. */
-Comparison
-compare (const Eigen::Matrix2Xd& at_static, const Eigen::Matrix2Xd& shifted, const KnnIndex::Result& static_nearest,
-         const KnnIndex::Result& shifted_nearest, const std::vector<double>& radii_squared, const TargetView& view)
+/** The best qualifying end-alignment shift of a segment: its gain (0 when none
+ *  qualifies), the shift and the placement it gives. */
+struct Slide
 {
-  Comparison c;
-  for (Eigen::Index k = 0; k < at_static.cols (); ++k) {
-    if (!matching::inFieldOfView (view.profile, at_static.col (k)) ||
-        !matching::inFieldOfView (view.profile, shifted.col (k)))
-      continue;
-    c.static_explained += static_nearest.squared_distances (0, k) <= radii_squared[k] ? 1 : 0;
-    c.explained += shifted_nearest.squared_distances (0, k) <= radii_squared[k] ? 1 : 0;
-    c.static_seen_through += matching::seesThroughToAReturn (view.profile, at_static.col (k), view.breakpoint) ? 1 : 0;
-    c.seen_through += matching::seesThroughToAReturn (view.profile, shifted.col (k), view.breakpoint) ? 1 : 0;
+  int gain = 0;
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero ();
+  Placement placement;
+};
+
+Slide
+bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment, const Eigen::Matrix2Xd& at_static,
+           const matching::SegmentMotionParameters& parameters, TargetView& view)
+{
+  const std::vector<Eigen::Vector2d> shifts =
+      matching::endAlignments (at_static.col (0), at_static.col (segment.size () - 1),
+                               matching::objectEnds (source, segment), view.target (), view.segments (), parameters);
+  const std::vector<double> radii_squared = squaredRadii (source, segment, parameters);
+  const Placement static_placement = place (at_static, radii_squared, view);
+  Slide best;
+  for (std::size_t h = 1; h < shifts.size (); ++h) {  // shifts[0] is the static motion itself
+    Placement shifted = place (at_static.colwise () + shifts[h], radii_squared, view);
+    const Comparison c (static_placement, shifted);
+    if (c.dominates () && c.gain () > best.gain)
+      best = {c.gain (), shifts[h], std::move (shifted)};
   }
-  return c;
+  return best;
 }
 
-/** The segment joins a new cluster of the static motion shifted by \a shift; each point
- *  takes its nearest target point there when within its overlap radius, or no match. */
+/** The segment joins a new cluster of motion \a T; each point takes its nearest target
+ *  point there when explained, or no match. */
 void
-addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const KnnIndex::Result& nearest,
-            const std::vector<double>& radii_squared, JointResult& result)
+addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const Placement& placement, JointResult& result)
 {
   const int cluster = static_cast<int> (result.cluster_motions.size ());
   result.cluster_motions.push_back (T);
   for (int k = 0; k < segment.size (); ++k) {
-    const bool near = nearest.squared_distances (0, k) <= radii_squared[k];
     result.source_cluster[segment.begin + k] = cluster;
-    result.source_match[segment.begin + k] = near ? nearest.indices (0, k) : kNoMatch;
+    result.source_match[segment.begin + k] = placement.explained[k] ? placement.nearest.indices (0, k) : kNoMatch;
   }
 }
 
@@ -126,45 +207,27 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
   if (min_seen_through < 1)
     throw std::invalid_argument ("[pcl_crf::joint::separateSegmentsTheTargetSeesThrough] min_seen_through must be "
                                  ">= 1, got " + std::to_string (min_seen_through));
-  if (result.static_cluster < 0 || source.cols () < 2 || target.cols () < 2)
+  if (!detail::canSeparateFromStaticWorld (source, target, result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  TargetView view{matching::makeRangeProfile (target), {}, {}};
-  view.breakpoint = matching::breakpointDistance (view.profile, parameters.breakpoint_angle, parameters.range_noise);
-  view.points.build (target);
-  const std::vector<matching::ScanSegment> target_segments =
-      matching::segmentScan (target, parameters.breakpoint_angle, parameters.range_noise);
+  TargetView view (target, parameters);
   int added = 0;
   for (const matching::ScanSegment& segment :
        matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise)) {
     if (segment.size () < parameters.min_segment_points || !outsideMovingClusters (segment, result))
       continue;
     const Eigen::Matrix2Xd at_static = T_static * source.middleCols (segment.begin, segment.size ());
-    if (countSeenThrough (at_static, view) < min_seen_through)
+    int seen_through = 0;
+    for (Eigen::Index k = 0; k < at_static.cols (); ++k)
+      seen_through += view.seesThrough (at_static.col (k)) ? 1 : 0;
+    if (seen_through < min_seen_through)
       continue;
-    const std::vector<Eigen::Vector2d> shifts =
-        matching::endAlignments (at_static.col (0), at_static.col (segment.size () - 1),
-                                 matching::objectEnds (source, segment), target, target_segments, parameters);
-    const std::vector<double> radii_squared = squaredRadii (source, segment, parameters);
-    const KnnIndex::Result static_nearest = view.points.search (at_static, 1);
-    int best_gain = 0;
-    KnnIndex::Result best_nearest;
-    Eigen::Vector2d best_shift = Eigen::Vector2d::Zero ();
-    for (std::size_t h = 1; h < shifts.size (); ++h) {  // shifts[0] is the static motion itself
-      const Eigen::Matrix2Xd shifted = at_static.colwise () + shifts[h];
-      KnnIndex::Result nearest = view.points.search (shifted, 1);
-      const Comparison c = compare (at_static, shifted, static_nearest, nearest, radii_squared, view);
-      if (c.dominates () && c.gain () > best_gain) {
-        best_gain = c.gain ();
-        best_shift = shifts[h];
-        best_nearest = std::move (nearest);
-      }
-    }
-    if (best_gain == 0)
+    const Slide slide = bestSlide (source, segment, at_static, parameters, view);
+    if (slide.gain == 0)
       continue;
     Rigid2d T = T_static;
-    T.translation () += best_shift;
-    addCluster (segment, T, best_nearest, radii_squared, result);
+    T.translation () += slide.shift;
+    addCluster (segment, T, slide.placement, result);
     ++added;
   }
   if (added > 0)
