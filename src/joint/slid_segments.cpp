@@ -156,13 +156,26 @@ squaredRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segme
 }
 
 /** The best qualifying end-alignment shift of a segment: its gain (0 when none
- *  qualifies), the shift and the placement it gives. */
+ *  qualifies, or when the segment's shape does not tell where it went), the shift and
+ *  the placement it gives. */
 struct Slide
 {
   int gain = 0;
   Eigen::Vector2d shift = Eigen::Vector2d::Zero ();
   Placement placement;
 };
+
+/** Whether another qualifying shift, farther than \a radius from the best one, explains
+ *  the segment as well: then its shape does not single out where it went (a leg or a
+ *  post of a few points fits the end of many surfaces; a truck's side fits one). */
+bool
+placedAmbiguously (const Slide& best, const std::vector<std::pair<int, Eigen::Vector2d>>& qualifying, double radius)
+{
+  for (const auto& [gain, shift] : qualifying)
+    if (gain >= best.gain && (shift - best.shift).norm () > radius)
+      return true;
+  return false;
+}
 
 Slide
 bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment, const Eigen::Matrix2Xd& at_static,
@@ -174,12 +187,18 @@ bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
   const std::vector<double> radii_squared = squaredRadii (source, segment, parameters);
   const Placement static_placement = place (at_static, radii_squared, view);
   Slide best;
+  std::vector<std::pair<int, Eigen::Vector2d>> qualifying;  // gain, shift
   for (std::size_t h = 1; h < shifts.size (); ++h) {  // shifts[0] is the static motion itself
     Placement shifted = place (at_static.colwise () + shifts[h], radii_squared, view);
     const Comparison c (static_placement, shifted);
-    if (c.dominates () && c.gain () > best.gain)
+    if (!c.dominates ())
+      continue;
+    qualifying.emplace_back (c.gain (), shifts[h]);
+    if (c.gain () > best.gain)
       best = {c.gain (), shifts[h], std::move (shifted)};
   }
+  if (placedAmbiguously (best, qualifying, parameters.overlap_radius))
+    return {};
   return best;
 }
 

@@ -316,9 +316,11 @@ TEST (JointMovedPoints, MovingClustersKeepTheirPointsAndBadResultsAreRejected)
   EXPECT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 1);  // B only
   EXPECT_EQ (clusterOf (scene.source_object, kWalkerC, result), 0);
   EXPECT_EQ (clusterOf (scene.source_object, kWalkerA, result), 1);
-  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
-    if (scene.source_object[i] == kWalkerA)
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i) {
+    if (scene.source_object[i] == kWalkerA) {
       EXPECT_EQ (result.source_match[i], a_matches[i]) << i;
+    }
+  }
   EXPECT_EQ (result.cluster_motions.size (), 3u);
 
   JointResult no_static = scene.allStatic ();
@@ -414,6 +416,34 @@ TEST (JointSlidSegments, AStandingScenePartlyClusteredOrTooLittleSeenThroughIsLe
   near_only.max_displacement = 0.5;
   JointResult far = driving.allStatic ();
   EXPECT_EQ (separateSegmentsTheTargetSeesThrough (driving.source, driving.target, near_only, 2, far), 0);
+}
+
+constexpr int kPost = 2;
+
+TEST (JointSlidSegments, AShortSegmentThatFitsTwoPlacesEquallyWellIsLeftAlone)
+{
+  // A 0.1 m post 2 m away (about five points) that stood in front of the wall and is
+  // gone from there in the target: where it went, its shape alone must tell.
+  std::vector<int> source_object, one_object, two_object;
+  const Eigen::Matrix2Xd source = rayCast ({{8.0, -20.0, 20.0, kWall}, {2.0, 1.0, 1.1, kPost}}, source_object);
+  const Eigen::Matrix2Xd one_post =
+      rayCast ({{8.0, -20.0, 20.0, kWall}, {2.0, 1.5, 1.6, kPost}}, one_object);
+  const Eigen::Matrix2Xd two_posts =
+      rayCast ({{8.0, -20.0, 20.0, kWall}, {2.0, 1.5, 1.6, kPost}, {2.0, 0.3, 0.4, kPost}}, two_object);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+
+  JointResult single = allStaticResult (source, one_post);
+  ASSERT_EQ (separateSegmentsTheTargetSeesThrough (source, one_post, parameters, 2, single), 1);
+  const int post = clusterOf (source_object, kPost, single);
+  ASSERT_NE (post, single.static_cluster);
+  EXPECT_NEAR (single.cluster_motions[post].translation ().x (), 0.5, 0.05);  // one beam spacing there
+  EXPECT_NEAR (single.cluster_motions[post].translation ().y (), 0.0, 1e-9);
+
+  // Two posts, each explaining the whole segment: 0.5 m right or 0.7 m left.
+  JointResult ambiguous = allStaticResult (source, two_posts);
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (source, two_posts, parameters, 2, ambiguous), 0);
+  EXPECT_EQ (ambiguous.cluster_motions.size (), 1u);
+  EXPECT_EQ (clusterOf (source_object, kPost, ambiguous), ambiguous.static_cluster);
 }
 
 TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)
