@@ -166,13 +166,14 @@ struct Slide
 };
 
 /** Whether another qualifying shift, farther than \a radius from the best one, explains
- *  the segment as well: then its shape does not single out where it went (a leg or a
- *  post of a few points fits the end of many surfaces; a truck's side fits one). */
+ *  the segment as well, or within one point (a point at the edge of its overlap radius
+ *  tells nothing): then its shape does not single out where it went (a leg or a post
+ *  of a few points fits the end of many surfaces; a truck's side fits one). */
 bool
 placedAmbiguously (const Slide& best, const std::vector<std::pair<int, Eigen::Vector2d>>& qualifying, double radius)
 {
   for (const auto& [gain, shift] : qualifying)
-    if (gain >= best.gain && (shift - best.shift).norm () > radius)
+    if (gain >= best.gain - 1 && (shift - best.shift).norm () > radius)
       return true;
   return false;
 }

@@ -250,8 +250,8 @@ separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
  *  seen-through points makes the segment a cluster of the static motion shifted by it,
  *  each point matched to its nearest target point there within its overlap radius, or
  *  to none. When another qualifying shift farther than overlap_radius from that one
- *  gains as much, the segment's shape does not tell where it went (a leg or a post of
- *  a few points fits the end of many surfaces) and it is left alone. Beams without a
+ *  gains as much or one point less, the segment's shape does not tell where it went (a
+ *  leg or a post of a few points fits the end of many surfaces) and it is left alone. Beams without a
  *  return are no evidence (real lasers drop returns).
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
