@@ -446,6 +446,32 @@ TEST (JointSlidSegments, AShortSegmentThatFitsTwoPlacesEquallyWellIsLeftAlone)
   EXPECT_EQ (clusterOf (source_object, kPost, ambiguous), ambiguous.static_cluster);
 }
 
+TEST (JointSlidSegments, APlaceThatExplainsOnePointLessStillMakesTheSlideAmbiguousTwoLessDoNot)
+{
+  // An eight-point post 2 m away goes to one of two posts. The wall has a gap at bearings
+  // 69°-97° (x in [-1, 3] m at y = 8 m) where the second post, shorter, stands with no
+  // return behind it: aligned with its end, the post's last points land in the empty
+  // beams beside it, neither explained nor seen through.
+  std::vector<int> source_object, target_object;
+  const Surface left{8.0, -20.0, -1.0, kWall}, right{8.0, 3.0, 20.0, kWall};
+  const Eigen::Matrix2Xd source = rayCast ({left, right, {2.0, 1.0, 1.2, kPost}}, source_object);
+  const auto targetWithSecondPostTo = [&] (double x_max) {
+    return rayCast ({left, right, {2.0, 1.5, 1.7, kPost}, {2.0, 0.3, x_max, kPost}}, target_object);
+  };
+  // 0.12 m long, the second post explains 7 of the 8 points where the first explains 8.
+  const Eigen::Matrix2Xd one_less = targetWithSecondPostTo (0.42);
+  JointResult ambiguous = allStaticResult (source, one_less);
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (source, one_less, {}, 2, ambiguous), 0);
+  EXPECT_EQ (clusterOf (source_object, kPost, ambiguous), ambiguous.static_cluster);
+  // 0.09 m long, 6 of 8: the first post is where it went.
+  const Eigen::Matrix2Xd two_less = targetWithSecondPostTo (0.39);
+  JointResult slid = allStaticResult (source, two_less);
+  ASSERT_EQ (separateSegmentsTheTargetSeesThrough (source, two_less, {}, 2, slid), 1);
+  const int post = clusterOf (source_object, kPost, slid);
+  ASSERT_NE (post, slid.static_cluster);
+  EXPECT_NEAR (slid.cluster_motions[post].translation ().x (), 0.5, 0.05);
+}
+
 TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)
 {
   const Alongside scene (1.0);
