@@ -4,6 +4,7 @@
 #include <pcl_crf/matching/segment_motions.h>
 
 #include "cluster_numbering.h"
+#include "scan_views.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -19,60 +20,36 @@ namespace joint {
 
 namespace {
 
-/** Everything the search for moved-in objects reads: both scans, what each sensor saw,
- *  their segments, and the target's points as a kd-tree with their overlap radii
- *  (makeScene () fills what every pair needs, completeScene () the rest). */
+/** Everything the search for moved-in objects reads: both scans with their segments,
+ *  what each sensor saw and the target's kd-tree (\a views), and per point the
+ *  segments and the target's overlap radii (completeScene ()). */
 struct FreeSpaceScene
 {
+  const detail::ScanViews& views;
   const Eigen::Matrix2Xd& source;
   const Eigen::Matrix2Xd& target;
   const matching::SegmentMotionParameters& parameters;
-  matching::RangeProfile source_view;
-  matching::RangeProfile target_view;
-  matching::BreakpointDistance source_breakpoint;
-  matching::BreakpointDistance target_breakpoint;
-  std::vector<matching::ScanSegment> source_segments;
   std::vector<int> source_segment_of;  // per source point: its segment
-  std::vector<matching::ScanSegment> target_segments;
   std::vector<int> target_segment_of;  // per target point: its segment
   std::vector<double> target_spacing;  // per target point: its pointSpacing () on its segment
   std::vector<double> target_radius;   // per target point: its overlap radius on its segment
-  KnnIndex target_points;
 };
 
-/** The part of the scene every pair needs: what the source saw and the target's
- *  segments, to find the segments with points the source saw through. */
-FreeSpaceScene
-makeScene (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-           const matching::SegmentMotionParameters& parameters)
-{
-  const double angle = parameters.breakpoint_angle, noise = parameters.range_noise;
-  FreeSpaceScene scene{source, target, parameters, matching::makeRangeProfile (source), {}, {}, {}, {}, {}, {}, {},
-                       {}, {}, {}};
-  scene.source_breakpoint = matching::breakpointDistance (scene.source_view, angle, noise);
-  scene.target_segments = matching::segmentScan (target, angle, noise);
-  return scene;
-}
-
-/** The rest of the scene, needed only once a segment has points the source saw through. */
+/** The per-point part of the scene, needed only once a segment has points the source
+ *  saw through. */
 void
 completeScene (FreeSpaceScene& scene)
 {
-  const matching::SegmentMotionParameters& parameters = scene.parameters;
-  scene.target_view = matching::makeRangeProfile (scene.target);
-  scene.target_breakpoint =
-      matching::breakpointDistance (scene.target_view, parameters.breakpoint_angle, parameters.range_noise);
-  scene.source_segments = matching::segmentScan (scene.source, parameters.breakpoint_angle, parameters.range_noise);
-  scene.source_segment_of = matching::segmentOfEachPoint (scene.source_segments, scene.source.cols ());
-  scene.target_segment_of = matching::segmentOfEachPoint (scene.target_segments, scene.target.cols ());
+  const std::vector<matching::ScanSegment>& target_segments = scene.views.targetSegments ();
+  scene.source_segment_of = matching::segmentOfEachPoint (scene.views.sourceSegments (), scene.source.cols ());
+  scene.target_segment_of = matching::segmentOfEachPoint (target_segments, scene.target.cols ());
   scene.target_spacing.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   scene.target_radius.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
-  for (const matching::ScanSegment& segment : scene.target_segments)
+  for (const matching::ScanSegment& segment : target_segments)
     for (int j = segment.begin; j < segment.end; ++j) {
       scene.target_spacing[j] = matching::pointSpacing (scene.target, j, segment.begin, segment.end);
-      scene.target_radius[j] = matching::overlapRadius (parameters, scene.target_spacing[j]);
+      scene.target_radius[j] = matching::overlapRadius (scene.parameters, scene.target_spacing[j]);
     }
-  scene.target_points.build (scene.target);
 }
 
 /** The source points \a points moved by T, as columns. */
@@ -91,9 +68,10 @@ int
 segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Rigid2d& T)
 {
   const Rigid2d T_inverse = T.inverse ();
+  const detail::SensorView& seen = scene.views.sourceView ();
   int seen_through = 0;
   for (int j = segment.begin; j < segment.end; ++j)
-    seen_through += matching::seesThrough (scene.source_view, T_inverse * scene.target.col (j), scene.source_breakpoint);
+    seen_through += matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint);
   return seen_through;
 }
 
@@ -102,9 +80,10 @@ segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& se
 int
 objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, const Rigid2d& T)
 {
+  const detail::SensorView& seen = scene.views.targetView ();
   int seen_through = 0;
   for (int i : object)
-    seen_through += matching::seesThrough (scene.target_view, T * scene.source.col (i), scene.target_breakpoint);
+    seen_through += matching::seesThrough (seen.profile, T * scene.source.col (i), seen.breakpoint);
   return seen_through;
 }
 
@@ -116,7 +95,7 @@ landedTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points,
   std::vector<int> landed (points.size (), -1);
   if (points.empty ())
     return landed;
-  const KnnIndex::Result nearest = scene.target_points.search (movedPoints (scene, points, T), 1);  // one batch
+  const KnnIndex::Result nearest = scene.views.targetPoints ().search (movedPoints (scene, points, T), 1);  // one batch
   for (std::size_t k = 0; k < points.size (); ++k) {
     const auto column = static_cast<Eigen::Index> (k);
     const int j = nearest.indices (0, column);
@@ -171,7 +150,7 @@ std::vector<int>
 objectOnSegment (const FreeSpaceScene& scene, int segment, const std::vector<int>& free,
                  const std::vector<int>& static_target)
 {
-  std::vector<bool> on_segment (scene.source_segments.size (), false);
+  std::vector<bool> on_segment (scene.views.sourceSegments ().size (), false);
   for (int i : free)
     if (segmentOfTarget (scene, static_target[i]) == segment && scene.source_segment_of[i] >= 0)
       on_segment[scene.source_segment_of[i]] = true;
@@ -207,7 +186,7 @@ slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segm
       overlapped.push_back (static_target[i]);
   std::sort (overlapped.begin (), overlapped.end ());
   overlapped.erase (std::unique (overlapped.begin (), overlapped.end ()), overlapped.end ());
-  const matching::ScanSegment& whole = scene.target_segments[segment];
+  const matching::ScanSegment& whole = scene.views.targetSegments ()[segment];
   if (overlapped.size () < 2)
     return principalAxis (scene.target.middleCols (whole.begin, whole.size ()));
   Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (overlapped.size ()));
@@ -242,7 +221,7 @@ struct ShiftSearch
   seenThrough (double shift) const
   {
     const Rigid2d T = motion (shift);
-    return segmentSeenThrough (scene, scene.target_segments[segment], T) + objectSeenThrough (scene, object, T);
+    return segmentSeenThrough (scene, scene.views.targetSegments ()[segment], T) + objectSeenThrough (scene, object, T);
   }
 };
 
@@ -461,19 +440,22 @@ freePoints (const JointResult& result)
 }  // namespace
 
 int
-separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                            const matching::SegmentMotionParameters& parameters, JointResult& result)
+detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
 {
-  detail::checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
-  if (!detail::canSeparateFromStaticWorld (source, target, result))
+  const Eigen::Matrix2Xd& source = views.source ();
+  const Eigen::Matrix2Xd& target = views.target ();
+  const matching::SegmentMotionParameters& parameters = views.parameters ();
+  checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
+  if (!canSeparateFromStaticWorld (source, target, result))
     return 0;
-  FreeSpaceScene scene = makeScene (source, target, parameters);
+  FreeSpaceScene scene{views, source, target, parameters, {}, {}, {}, {}};
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   // The target segments with points the source saw through under the static motion, and how many.
+  const std::vector<matching::ScanSegment>& target_segments = views.targetSegments ();
   std::vector<int> moved_in;
-  std::vector<int> static_seen_through (scene.target_segments.size (), 0);
-  for (int g = 0; g < static_cast<int> (scene.target_segments.size ()); ++g) {
-    const matching::ScanSegment& segment = scene.target_segments[g];
+  std::vector<int> static_seen_through (target_segments.size (), 0);
+  for (int g = 0; g < static_cast<int> (target_segments.size ()); ++g) {
+    const matching::ScanSegment& segment = target_segments[g];
     if (segment.size () >= parameters.min_segment_points)
       static_seen_through[g] = segmentSeenThrough (scene, segment, T_static);
     if (static_seen_through[g] > 0)
@@ -496,7 +478,7 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
     const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
     if (seen_through < 2)  // freeSpaceShift () must resolve two
       continue;
-    const matching::ScanSegment& segment = scene.target_segments[g];
+    const matching::ScanSegment& segment = target_segments[g];
     const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
     const double coarse_step = 2.0 * parameters.overlap_radius;
     const ShiftSearch search{scene,
@@ -522,8 +504,15 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
     ++added;
   }
   if (added > 0)
-    detail::numberLargestFirst (result);
+    numberLargestFirst (result);
   return added;
+}
+
+int
+separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                            const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result);
 }
 
 }  // namespace joint

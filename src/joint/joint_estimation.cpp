@@ -7,6 +7,7 @@
 #include <pcl_crf/matching/lifted_matches.h>
 
 #include "cluster_numbering.h"
+#include "scan_views.h"
 
 #include <algorithm>
 #include <numeric>
@@ -338,14 +339,15 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
       matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, segments, result);
+  const detail::ScanViews views (source, target, segments);  // shared by the steps below
   if (parameters.remove_clusters_the_target_sees_through)
-    removeClustersTheTargetSeesThrough (source, target, segments, result);
+    detail::removeClustersTheTargetSeesThrough (views, result);
   if (parameters.separate_objects_in_free_space)
-    separateObjectsInFreeSpace (source, target, segments, result);
+    detail::separateObjectsInFreeSpace (views, result);
   if (parameters.separate_segments_the_target_sees_through)
-    separateSegmentsTheTargetSeesThrough (source, target, segments, parameters.segment_min_points_seen_through, result);
+    detail::separateSegmentsTheTargetSeesThrough (views, parameters.segment_min_points_seen_through, result);
   if (parameters.separate_points_the_target_sees_through)
-    separatePointsTheTargetSeesThrough (source, target, segments, result);
+    detail::separatePointsTheTargetSeesThrough (views, result);
   return result;
 }
 

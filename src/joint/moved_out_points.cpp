@@ -4,6 +4,7 @@
 #include <pcl_crf/matching/segment_motions.h>
 
 #include "cluster_numbering.h"
+#include "scan_views.h"
 
 #include <algorithm>
 #include <limits>
@@ -21,18 +22,15 @@ struct MovedGroup
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero ();
 };
 
-/** The points of \a scan that \a other_view saw through (to a return) when moved by T,
- *  among those \a candidate allows. */
+/** The points of \a scan that the other sensor (\a other_view) saw through (to a return)
+ *  when moved by T, among those \a candidate allows. */
 std::vector<bool>
-seenThroughByTheOther (const Eigen::Matrix2Xd& scan, const Eigen::Matrix2Xd& other, const Rigid2d& T,
-                       const matching::SegmentMotionParameters& parameters, const std::vector<bool>& candidate)
+seenThroughByTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& other_view, const Rigid2d& T,
+                       const std::vector<bool>& candidate)
 {
-  const matching::RangeProfile other_view = matching::makeRangeProfile (other);
-  const matching::BreakpointDistance breakpoint =
-      matching::breakpointDistance (other_view, parameters.breakpoint_angle, parameters.range_noise);
   std::vector<bool> seen (candidate.size (), false);
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    seen[i] = candidate[i] && matching::seesThroughToAReturn (other_view, T * scan.col (i), breakpoint);
+    seen[i] = candidate[i] && matching::seesThroughToAReturn (other_view.profile, T * scan.col (i), other_view.breakpoint);
   return seen;
 }
 
@@ -135,26 +133,26 @@ addCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, cons
 }  // namespace
 
 int
-separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                                    const matching::SegmentMotionParameters& parameters, JointResult& result)
+detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 {
-  detail::checkResultAgainstScans ("separatePointsTheTargetSeesThrough", source, target, result);
-  if (!detail::canSeparateFromStaticWorld (source, target, result))
+  const Eigen::Matrix2Xd& source = views.source ();
+  const Eigen::Matrix2Xd& target = views.target ();
+  const matching::SegmentMotionParameters& parameters = views.parameters ();
+  checkResultAgainstScans ("separatePointsTheTargetSeesThrough", source, target, result);
+  if (!canSeparateFromStaticWorld (source, target, result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   std::vector<bool> free (result.source_cluster.size ());
   for (std::size_t i = 0; i < free.size (); ++i)
-    free[i] = detail::inStaticWorldOrOutliers (result, i);
-  const std::vector<MovedGroup> moved_out =
-      groupBySegment (source, matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
-                      seenThroughByTheOther (source, target, T_static, parameters, free), T_static);
+    free[i] = inStaticWorldOrOutliers (result, i);
+  const std::vector<MovedGroup> moved_out = groupBySegment (
+      source, views.sourceSegments (), seenThroughByTheOther (source, views.targetView (), T_static, free), T_static);
   if (moved_out.empty ())
     return 0;
-  const std::vector<matching::ScanSegment> target_segments =
-      matching::segmentScan (target, parameters.breakpoint_angle, parameters.range_noise);
+  const std::vector<matching::ScanSegment>& target_segments = views.targetSegments ();
   const std::vector<MovedGroup> moved_in = groupBySegment (
       target, target_segments,
-      seenThroughByTheOther (target, source, T_static.inverse (), parameters,
+      seenThroughByTheOther (target, views.sourceView (), T_static.inverse (),
                              unclaimedTargets (target_segments, target.cols (), free, result)),
       Rigid2d::Identity ());
   const std::vector<int> counterpart = mutualCounterparts (moved_out, moved_in, parameters.max_displacement);
@@ -169,8 +167,15 @@ separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
     ++added;
   }
   if (added > 0)
-    detail::numberLargestFirst (result);
+    numberLargestFirst (result);
   return added;
+}
+
+int
+separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  return detail::separatePointsTheTargetSeesThrough (detail::ScanViews (source, target, parameters), result);
 }
 
 }  // namespace joint

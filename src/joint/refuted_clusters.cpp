@@ -4,6 +4,7 @@
 #include <pcl_crf/matching/scan_segments.h>
 
 #include "cluster_numbering.h"
+#include "scan_views.h"
 
 #include <vector>
 
@@ -21,21 +22,17 @@ struct FreeSpaceEvidence
 };
 
 FreeSpaceEvidence
-weighEvidence (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-               const matching::SegmentMotionParameters& parameters, const std::vector<int>& attached,
-               const JointResult& result)
+weighEvidence (const detail::ScanViews& views, const std::vector<int>& attached, const JointResult& result)
 {
   const auto clusters = result.cluster_motions.size ();
   FreeSpaceEvidence evidence{std::vector<int> (clusters, 0), std::vector<int> (clusters, 0)};
-  const matching::RangeProfile view = matching::makeRangeProfile (target);
-  const matching::BreakpointDistance breakpoint =
-      matching::breakpointDistance (view, parameters.breakpoint_angle, parameters.range_noise);
+  const detail::SensorView& seen = views.targetView ();
   for (std::size_t i = 0; i < attached.size (); ++i) {
     const int l = attached[i];
     if (l == kOutlierCluster || l == result.static_cluster)
       continue;
-    const Eigen::Vector2d moved = result.cluster_motions[l] * source.col (static_cast<Eigen::Index> (i));
-    evidence.seen_through[l] += matching::seesThrough (view, moved, breakpoint) ? 1 : 0;
+    const Eigen::Vector2d moved = result.cluster_motions[l] * views.source ().col (static_cast<Eigen::Index> (i));
+    evidence.seen_through[l] += matching::seesThrough (seen.profile, moved, seen.breakpoint) ? 1 : 0;
     evidence.matched[l] += result.source_cluster[i] == l && result.source_match[i] != kNoMatch ? 1 : 0;
   }
   return evidence;
@@ -44,20 +41,18 @@ weighEvidence (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
 }  // namespace
 
 int
-removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                                    const matching::SegmentMotionParameters& parameters, JointResult& result)
+detail::removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 {
-  detail::checkResultAgainstScans ("removeClustersTheTargetSeesThrough", source, target, result);
+  const Eigen::Matrix2Xd& source = views.source ();
+  checkResultAgainstScans ("removeClustersTheTargetSeesThrough", source, views.target (), result);
   if (result.static_cluster < 0 || result.cluster_motions.size () < 2)
     return 0;
   // Per source point: its cluster, or for an outlier the cluster whose motion it would
   // share, that of the nearer closest clustered point on its source segment.
   const std::vector<int> attached = clustering::completeLabelsWithinSegments (
-      source,
-      matching::segmentOfEachPoint (matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise),
-                                    source.cols ()),
-      result.source_cluster, kOutlierCluster);
-  const FreeSpaceEvidence evidence = weighEvidence (source, target, parameters, attached, result);
+      source, matching::segmentOfEachPoint (views.sourceSegments (), source.cols ()), result.source_cluster,
+      kOutlierCluster);
+  const FreeSpaceEvidence evidence = weighEvidence (views, attached, result);
   std::vector<bool> removed (result.cluster_motions.size (), false);
   int count = 0;
   for (std::size_t l = 0; l < removed.size (); ++l)
@@ -66,8 +61,15 @@ removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
       ++count;
     }
   if (count > 0)
-    detail::removeClusters (removed, result);
+    removeClusters (removed, result);
   return count;
+}
+
+int
+removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  return detail::removeClustersTheTargetSeesThrough (detail::ScanViews (source, target, parameters), result);
 }
 
 }  // namespace joint

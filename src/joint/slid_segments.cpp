@@ -5,6 +5,7 @@
 #include <pcl_crf/matching/segment_motions.h>
 
 #include "cluster_numbering.h"
+#include "scan_views.h"
 
 #include <stdexcept>
 #include <utility>
@@ -17,62 +18,46 @@ namespace joint {
 namespace {
 
 /** What the target scan says of points in its frame: explained (a target point within
- *  their overlap radius) or seen through (to a return farther away), or neither. Its
- *  segments and kd-tree are built on first use: most pairs have no segment to slide. */
+ *  their overlap radius) or seen through (to a return farther away), or neither. */
 class TargetView
 {
 public:
-  TargetView (const Eigen::Matrix2Xd& target, const matching::SegmentMotionParameters& parameters)
-    : target_ (target), parameters_ (parameters), profile_ (matching::makeRangeProfile (target)),
-      breakpoint_ (matching::breakpointDistance (profile_, parameters.breakpoint_angle, parameters.range_noise))
-  {
-  }
+  explicit TargetView (const detail::ScanViews& views) : views_ (views) {}
 
   bool
   inView (const Eigen::Vector2d& point) const
   {
-    return matching::inFieldOfView (profile_, point);
+    return matching::inFieldOfView (views_.targetView ().profile, point);
   }
 
   bool
   seesThrough (const Eigen::Vector2d& point) const
   {
-    return matching::seesThroughToAReturn (profile_, point, breakpoint_);
+    const detail::SensorView& seen = views_.targetView ();
+    return matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint);
   }
 
   /** The nearest target point of every column of \a points (one batched query). */
   KnnIndex::Result
-  nearest (const Eigen::Matrix2Xd& points)
+  nearest (const Eigen::Matrix2Xd& points) const
   {
-    if (points_.size () == 0)
-      points_.build (target_);
-    return points_.search (points, 1);
+    return views_.targetPoints ().search (points, 1);
   }
 
   const Eigen::Matrix2Xd&
   target () const
   {
-    return target_;
+    return views_.target ();
   }
 
   const std::vector<matching::ScanSegment>&
-  segments ()
+  segments () const
   {
-    if (!segmented_) {
-      segments_ = matching::segmentScan (target_, parameters_.breakpoint_angle, parameters_.range_noise);
-      segmented_ = true;
-    }
-    return segments_;
+    return views_.targetSegments ();
   }
 
 private:
-  const Eigen::Matrix2Xd& target_;
-  const matching::SegmentMotionParameters& parameters_;
-  matching::RangeProfile profile_;
-  matching::BreakpointDistance breakpoint_;
-  KnnIndex points_;
-  std::vector<matching::ScanSegment> segments_;
-  bool segmented_ = false;
+  const detail::ScanViews& views_;
 };
 
 /** What the target says of each point of a segment placed by one motion. */
@@ -84,7 +69,7 @@ struct Placement
 };
 
 Placement
-place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, TargetView& view)
+place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const TargetView& view)
 {
   Placement p{std::move (points), {}, {}, {}, {}};
   p.nearest = view.nearest (p.points);
@@ -180,7 +165,7 @@ placedAmbiguously (const Slide& best, const std::vector<std::pair<int, Eigen::Ve
 
 Slide
 bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment, const Eigen::Matrix2Xd& at_static,
-           const matching::SegmentMotionParameters& parameters, TargetView& view)
+           const matching::SegmentMotionParameters& parameters, const TargetView& view)
 {
   const std::vector<Eigen::Vector2d> shifts =
       matching::endAlignments (at_static.col (0), at_static.col (segment.size () - 1),
@@ -219,21 +204,20 @@ addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const Placem
 }  // namespace
 
 int
-separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                                      const matching::SegmentMotionParameters& parameters, int min_seen_through,
-                                      JointResult& result)
+detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result)
 {
-  detail::checkResultAgainstScans ("separateSegmentsTheTargetSeesThrough", source, target, result);
+  const Eigen::Matrix2Xd& source = views.source ();
+  const matching::SegmentMotionParameters& parameters = views.parameters ();
+  checkResultAgainstScans ("separateSegmentsTheTargetSeesThrough", source, views.target (), result);
   if (min_seen_through < 1)
     throw std::invalid_argument ("[pcl_crf::joint::separateSegmentsTheTargetSeesThrough] min_seen_through must be "
                                  ">= 1, got " + std::to_string (min_seen_through));
-  if (!detail::canSeparateFromStaticWorld (source, target, result))
+  if (!canSeparateFromStaticWorld (source, views.target (), result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  TargetView view (target, parameters);
+  const TargetView view (views);
   int added = 0;
-  for (const matching::ScanSegment& segment :
-       matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise)) {
+  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
     if (segment.size () < parameters.min_segment_points || !outsideMovingClusters (segment, result))
       continue;
     const Eigen::Matrix2Xd at_static = T_static * source.middleCols (segment.begin, segment.size ());
@@ -251,8 +235,17 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
     ++added;
   }
   if (added > 0)
-    detail::numberLargestFirst (result);
+    numberLargestFirst (result);
   return added;
+}
+
+int
+separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, int min_seen_through,
+                                      JointResult& result)
+{
+  return detail::separateSegmentsTheTargetSeesThrough (detail::ScanViews (source, target, parameters),
+                                                       min_seen_through, result);
 }
 
 }  // namespace joint

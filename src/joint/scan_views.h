@@ -1,0 +1,103 @@
+#pragma once
+// Internal: what the free-space steps of estimateJoint read of the two scans (their
+// segments, what each sensor saw, the target's kd-tree), built once per pair on first
+// use and shared by the steps (refuted_clusters.cpp, free_space_objects.cpp,
+// slid_segments.cpp, moved_out_points.cpp): they depend on the scans alone, not on the
+// clusters the steps edit.
+
+#include <pcl_crf/core/knn_index.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/range_profile.h>
+#include <pcl_crf/matching/scan_segments.h>
+#include <pcl_crf/matching/segment_motions.h>
+
+#include <optional>
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+namespace detail {
+
+/** What one sensor saw: its range profile and the breakpoint distance asked of it. */
+struct SensorView
+{
+  matching::RangeProfile profile;
+  matching::BreakpointDistance breakpoint;
+};
+
+/** The scans of a pair and what is derived from them alone, each part built when first
+ *  asked for (most pairs need only a few). The scans and parameters are referenced. */
+class ScanViews
+{
+public:
+  ScanViews (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+             const matching::SegmentMotionParameters& parameters);
+
+  const Eigen::Matrix2Xd&
+  source () const
+  {
+    return source_;
+  }
+
+  const Eigen::Matrix2Xd&
+  target () const
+  {
+    return target_;
+  }
+
+  const matching::SegmentMotionParameters&
+  parameters () const
+  {
+    return parameters_;
+  }
+
+  /** matching::segmentScan () of each scan with the parameters' breakpoint settings. */
+  const std::vector<matching::ScanSegment>&
+  sourceSegments () const;
+
+  const std::vector<matching::ScanSegment>&
+  targetSegments () const;
+
+  /** What the source / target sensor saw (matching::makeRangeProfile ()). */
+  const SensorView&
+  sourceView () const;
+
+  const SensorView&
+  targetView () const;
+
+  /** A kd-tree over the target's points. */
+  const KnnIndex&
+  targetPoints () const;
+
+private:
+  const std::vector<matching::ScanSegment>&
+  segments (std::optional<std::vector<matching::ScanSegment>>& cache, const Eigen::Matrix2Xd& scan) const;
+
+  const SensorView&
+  view (std::optional<SensorView>& cache, const Eigen::Matrix2Xd& scan) const;
+
+  const Eigen::Matrix2Xd& source_;
+  const Eigen::Matrix2Xd& target_;
+  const matching::SegmentMotionParameters& parameters_;
+  mutable std::optional<std::vector<matching::ScanSegment>> source_segments_, target_segments_;
+  mutable std::optional<SensorView> source_view_, target_view_;
+  mutable std::optional<KnnIndex> target_points_;
+};
+
+/** The free-space steps of joint_estimation.h on shared views (estimateJoint runs them
+ *  in turn on one pair); the public functions build their own. */
+int
+removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult& result);
+
+int
+separateObjectsInFreeSpace (const ScanViews& views, JointResult& result);
+
+int
+separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result);
+
+int
+separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result);
+
+}  // namespace detail
+}  // namespace joint
+}  // namespace pcl_crf
