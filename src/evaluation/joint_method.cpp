@@ -44,8 +44,10 @@ public:
   predict (const ScanPair& pair) override
   {
     requireModel ();
+    joint::JointParameters parameters = parameters_;
+    parameters.sensor = pair.sensor;  // the field of view of the free-space steps
     return joint::toPrediction (pair.source,
-                            joint::estimateJoint (pair.source, pair.target, pair.odometry, model_, parameters_));
+                                joint::estimateJoint (pair.source, pair.target, pair.odometry, model_, parameters));
   }
 
 private:

@@ -339,7 +339,7 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
       matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, segments, result);
-  const detail::ScanViews views (source, target, segments);  // shared by the steps below
+  const detail::ScanViews views (source, target, segments, parameters.sensor);  // shared by the steps below
   if (parameters.remove_clusters_the_target_sees_through)
     detail::removeClustersTheTargetSeesThrough (views, result);
   if (parameters.separate_objects_in_free_space)

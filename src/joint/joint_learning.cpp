@@ -95,8 +95,12 @@ double
 meanTrainingScore (const std::vector<ScanPair>& pairs, const JointModel& model, double PairScores::*metric)
 {
   double sum = 0.0;
-  for (const ScanPair& pair : pairs)
-    sum += scorePair (pair, toPrediction (pair.source, estimateJoint (pair.source, pair.target, pair.odometry, model))).*metric;
+  JointParameters parameters;
+  for (const ScanPair& pair : pairs) {
+    parameters.sensor = pair.sensor;  // as pcl_crf_eval runs it
+    sum += scorePair (pair, toPrediction (pair.source, estimateJoint (pair.source, pair.target, pair.odometry, model,
+                                                                      parameters))).*metric;
+  }
   return sum / static_cast<double> (pairs.size ());
 }
 

@@ -5,8 +5,8 @@ namespace joint {
 namespace detail {
 
 ScanViews::ScanViews (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                      const matching::SegmentMotionParameters& parameters)
-  : source_ (source), target_ (target), parameters_ (parameters)
+                      const matching::SegmentMotionParameters& parameters, const SensorInfo& sensor)
+  : source_ (source), target_ (target), parameters_ (parameters), sensor_ (sensor)
 {
 }
 
@@ -54,7 +54,7 @@ const SensorView&
 ScanViews::view (std::optional<SensorView>& cache, const Eigen::Matrix2Xd& scan) const
 {
   if (!cache) {
-    SensorView seen{matching::makeRangeProfile (scan), {}};
+    SensorView seen{matching::makeRangeProfile (scan, sensor_), {}};
     seen.breakpoint = matching::breakpointDistance (seen.profile, parameters_.breakpoint_angle, parameters_.range_noise);
     cache = std::move (seen);
   }

@@ -30,8 +30,10 @@ struct SensorView
 class ScanViews
 {
 public:
+  /** \a sensor: the laser's beams, whose field of view the range profiles take
+   *  (beam_count 0: unknown, inferred from the returns). */
   ScanViews (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-             const matching::SegmentMotionParameters& parameters);
+             const matching::SegmentMotionParameters& parameters, const SensorInfo& sensor = {});
 
   const Eigen::Matrix2Xd&
   source () const
@@ -58,7 +60,7 @@ public:
   const std::vector<matching::ScanSegment>&
   targetSegments () const;
 
-  /** What the source / target sensor saw (matching::makeRangeProfile ()). */
+  /** What the source / target sensor saw (matching::makeRangeProfile () with the sensor). */
   const SensorView&
   sourceView () const;
 
@@ -79,6 +81,7 @@ private:
   const Eigen::Matrix2Xd& source_;
   const Eigen::Matrix2Xd& target_;
   const matching::SegmentMotionParameters& parameters_;
+  const SensorInfo sensor_;
   mutable std::optional<std::vector<matching::ScanSegment>> source_segments_, target_segments_;
   mutable std::optional<SensorView> source_view_, target_view_;
   mutable std::optional<KnnIndex> target_points_;

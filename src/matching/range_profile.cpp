@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -56,15 +57,16 @@ widestGap (const Eigen::VectorXd& bearings, double& width)
   return widest;
 }
 
-/** Rotates the sorted profile so that its widest gap lies between its last and first
- *  return, taking the bearings past the wrap 2π up (so they stay increasing). */
+/** Rotates the sorted profile so that its gap \a gap (between returns gap and gap + 1)
+ *  lies between its last and first return, taking the bearings past the wrap 2π up (so
+ *  they stay increasing). */
 void
-startAfterWidestGap (RangeProfile& profile, Eigen::Index widest)
+startAfterGap (RangeProfile& profile, Eigen::Index gap)
 {
   const Eigen::Index m = profile.bearings.size ();
-  if (widest == m - 1)
+  if (gap == m - 1)
     return;
-  const Eigen::Index first = widest + 1;
+  const Eigen::Index first = gap + 1;
   Eigen::VectorXd bearings (m), ranges (m);
   for (Eigen::Index k = 0; k < m; ++k) {
     const Eigen::Index from = (first + k) % m;
@@ -101,13 +103,65 @@ bearingFrom (const RangeProfile& profile, const Eigen::Vector2d& point)
   return first + counterClockwise (first, std::atan2 (point.y (), point.x ()));
 }
 
+/** Whether bearing \a theta (bearingFrom ()) lies in the profile's field of view. */
+bool
+inField (const RangeProfile& profile, double theta)
+{
+  constexpr double kRounding = 1e-12;  // [rad]: a point on the first return's bearing wraps to just below 2π
+  return profile.full_circle || theta <= profile.field_last || theta >= profile.field_first + kTwoPi - kRounding;
+}
+
+/** The field of view from the returns: the widest gap between them is the sensor's back. */
+void
+inferField (RangeProfile& profile)
+{
+  double gap = 0.0;
+  const Eigen::Index widest = widestGap (profile.bearings, gap);
+  profile.full_circle = gap <= 1.5 * profile.step;
+  if (!profile.full_circle)
+    startAfterGap (profile, widest);
+  profile.field_first = profile.bearings (0);
+  profile.field_last = profile.bearings (profile.bearings.size () - 1);
+}
+
+/** Whether the sensor's beams go all round (half a beam beyond the first and last). */
+bool
+allRound (const SensorInfo& sensor)
+{
+  const double increment = std::abs (sensor.angle_increment);
+  return static_cast<double> (sensor.beam_count) * increment >= kTwoPi - 0.5 * increment;
+}
+
+/** Whether \a sensor describes its beams (beam_count > 0), after checking it does so sensibly. */
+bool
+knownSensor (const SensorInfo& sensor)
+{
+  const auto fail = [] (const std::string& what) {
+    throw std::invalid_argument ("[pcl_crf::matching::makeRangeProfile] the sensor " + what);
+  };
+  if (sensor.beam_count == 0)
+    return false;
+  if (sensor.beam_count < 2)
+    fail ("has " + std::to_string (sensor.beam_count) + " beams: give at least 2, or 0 for unknown");
+  if (!std::isfinite (sensor.angle_min) || !std::isfinite (sensor.angle_increment) || sensor.angle_increment == 0.0)
+    fail ("needs a finite angle_min and a finite, non-zero angle_increment");
+  return true;
+}
+
 }  // namespace
 
 RangeProfile
 makeRangeProfile (const Eigen::Matrix2Xd& scan)
 {
+  return makeRangeProfile (scan, SensorInfo{});
+}
+
+RangeProfile
+makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor)
+{
   if (!scan.allFinite ())
     throw std::invalid_argument ("[pcl_crf::matching::makeRangeProfile] the scan holds a non-finite point");
+  const bool from_sensor = knownSensor (sensor);
   const Eigen::Index m = scan.cols ();
   std::vector<Eigen::Index> order (static_cast<std::size_t> (m));
   std::iota (order.begin (), order.end (), Eigen::Index (0));
@@ -126,11 +180,13 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan)
     return profile;
   profile.step = medianStep (profile.bearings);
   profile.max_range = profile.ranges.maxCoeff ();
-  double gap = 0.0;
-  const Eigen::Index widest = widestGap (profile.bearings, gap);
-  profile.full_circle = gap <= 1.5 * profile.step;
-  if (!profile.full_circle)
-    startAfterWidestGap (profile, widest);
+  if (from_sensor && allRound (sensor)) {  // no back to infer
+    profile.full_circle = true;
+    profile.field_first = profile.bearings (0);
+    profile.field_last = profile.bearings (m - 1);
+  }
+  else
+    inferField (profile);
   return profile;
 }
 
@@ -164,8 +220,7 @@ seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, con
   if (m < 2 || !(step > 0.0) || !std::isfinite (distance.slope))
     return false;
   const double theta = bearingFrom (profile, point);
-  const double last = profile.bearings (m - 1);
-  if (!profile.full_circle && theta > last)  // in the widest gap: outside the field of view
+  if (!inField (profile, theta))
     return false;
   const double range = point.norm ();
   const double margin = range * distance.slope + distance.offset;
@@ -195,11 +250,7 @@ inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point)
   const Eigen::Index m = profile.bearings.size ();
   if (m < 2)
     return false;
-  if (profile.full_circle)
-    return true;
-  constexpr double kRounding = 1e-12;  // [rad]: a point on the first return's bearing wraps to just below 2π
-  const double theta = bearingFrom (profile, point);
-  return theta <= profile.bearings (m - 1) || theta >= profile.bearings (0) + kTwoPi - kRounding;
+  return inField (profile, bearingFrom (profile, point));
 }
 
 bool

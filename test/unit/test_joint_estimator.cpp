@@ -420,6 +420,26 @@ TEST (JointEstimation, RejectsBadInput)
   Odometry backwards = pair.odometry;
   backwards.interval = -0.1;
   EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, backwards, shippedModel ()), std::invalid_argument);
+  joint::JointParameters one_beam;
+  one_beam.sensor.beam_count = 1;
+  one_beam.sensor.angle_increment = 0.01;
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), one_beam),
+                std::invalid_argument);
+}
+
+TEST (JointEstimation, ALaserWithABackGivesTheSameResultKnownOrNot)
+{
+  // Only a laser whose beams go all round changes the free-space steps' field of view
+  // (matching::makeRangeProfile (scan, sensor)); the test split's is 180°.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0007");
+  ASSERT_EQ (pair.sensor.beam_count, 361);
+  joint::JointParameters known;
+  known.sensor = pair.sensor;
+  const joint::JointResult with = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), known);
+  const joint::JointResult without = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
+  EXPECT_EQ (with.source_cluster, without.source_cluster);
+  EXPECT_EQ (with.source_match, without.source_match);
+  EXPECT_TRUE (with.T_source_target.isApprox (without.T_source_target, 0.0));
 }
 
 TEST (JointEstimation, HandlesTinyScans)

@@ -236,3 +236,85 @@ TEST (RangeProfile, TheFieldOfViewSpansTheReturnsAcrossInnerGapsOrGoesAllRound)
 }
 
 }  // namespace
+
+namespace {
+
+/** A 360-beam laser (1° apart, from −179°) whose returns lie on a circle of 4 m except
+ *  in [60°, 120°], where it saw nothing in range (a sector wider than any other gap,
+ *  so the returns alone make it the sensor's back). */
+Eigen::Matrix2Xd
+roundScanWithEmptySector ()
+{
+  std::vector<Eigen::Vector2d> points;
+  for (int k = 0; k < 360; ++k) {
+    const int degrees = -179 + k;
+    if (degrees < 60 || degrees > 120)
+      points.push_back (polar (degrees, 4.0));
+  }
+  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k)
+    scan.col (static_cast<Eigen::Index> (k)) = points[k];
+  return scan;
+}
+
+pcl_crf::SensorInfo
+laser (int beams, double first_degrees, double step_degrees)
+{
+  pcl_crf::SensorInfo sensor;
+  sensor.beam_count = beams;
+  sensor.angle_min = first_degrees * kDegree;
+  sensor.angle_increment = step_degrees * kDegree;
+  sensor.range_max = 8.0;
+  return sensor;
+}
+
+}  // namespace
+
+TEST (RangeProfile, ARoundLaserHasNoBackWhereverItsReturnsLeaveASectorEmpty)
+{
+  const Eigen::Matrix2Xd scan = roundScanWithEmptySector ();
+  const Eigen::Vector2d in_sector = polar (90.0, 1.0), behind_return = polar (0.0, 4.5);
+
+  const auto inferred = makeRangeProfile (scan);
+  EXPECT_FALSE (inferred.full_circle);
+  EXPECT_FALSE (inFieldOfView (inferred, in_sector));  // taken for the back
+  EXPECT_FALSE (seesThrough (inferred, in_sector, kLambda, kNoise));
+
+  const auto known = makeRangeProfile (scan, laser (360, -179.0, 1.0));
+  EXPECT_TRUE (known.full_circle);
+  EXPECT_TRUE (inFieldOfView (known, in_sector));
+  EXPECT_TRUE (seesThrough (known, in_sector, kLambda, kNoise));              // free up to the farthest return
+  EXPECT_FALSE (seesThroughToAReturn (known, in_sector, pcl_crf::matching::breakpointDistance (known, kLambda, kNoise)));  // no return says so
+  EXPECT_FALSE (seesThrough (known, behind_return, kLambda, kNoise));
+  EXPECT_TRUE (seesThrough (known, polar (0.0, 3.0), kLambda, kNoise));
+  // The same beams swept clockwise.
+  EXPECT_TRUE (makeRangeProfile (scan, laser (360, 180.0, -1.0)).full_circle);
+}
+
+TEST (RangeProfile, ALaserWithABackKeepsTheFieldOfViewOfItsReturns)
+{
+  const Eigen::Matrix2Xd scan = wallWithOpening ();  // returns over [−45°, 45°]
+  const auto inferred = makeRangeProfile (scan);
+  for (const auto& sensor : {laser (91, -45.0, 1.0), laser (181, -90.0, 1.0), pcl_crf::SensorInfo{}}) {
+    const auto profile = makeRangeProfile (scan, sensor);
+    EXPECT_FALSE (profile.full_circle);
+    EXPECT_DOUBLE_EQ (profile.field_first, inferred.field_first);
+    EXPECT_DOUBLE_EQ (profile.field_last, inferred.field_last);
+    EXPECT_TRUE (seesThrough (profile, polar (15.0, 3.0), kLambda, kNoise));  // the opening
+    EXPECT_FALSE (seesThrough (profile, polar (-60.0, 1.0), kLambda, kNoise));
+  }
+  EXPECT_NEAR (inferred.field_first, -45.0 * kDegree, 1e-12);
+  EXPECT_NEAR (inferred.field_last, 45.0 * kDegree, 1e-12);
+}
+
+TEST (RangeProfile, ASensorThatDescribesNoBeamsSensiblyIsRejected)
+{
+  const Eigen::Matrix2Xd scan = wallWithOpening ();
+  EXPECT_THROW (makeRangeProfile (scan, laser (1, 0.0, 1.0)), std::invalid_argument);
+  EXPECT_THROW (makeRangeProfile (scan, laser (-5, 0.0, 1.0)), std::invalid_argument);
+  EXPECT_THROW (makeRangeProfile (scan, laser (91, 0.0, 0.0)), std::invalid_argument);
+  EXPECT_THROW (makeRangeProfile (scan, laser (91, std::numeric_limits<double>::quiet_NaN (), 1.0)),
+                std::invalid_argument);
+  EXPECT_THROW (makeRangeProfile (scan, laser (91, 0.0, std::numeric_limits<double>::infinity ())),
+                std::invalid_argument);
+}

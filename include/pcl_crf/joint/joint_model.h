@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pcl_crf/clustering/clustering_model.h>
+#include <pcl_crf/core/scan_pair.h>
 #include <pcl_crf/clustering/crf_clustering.h>
 #include <pcl_crf/joint/joint_features.h>
 #include <pcl_crf/joint/ladder_inference.h>
@@ -51,6 +52,13 @@ struct JointParameters
   /** the fewest points of a segment the target must see through under the static
    *  motion before a shift of it is sought (one point alone may be range noise). */
   int segment_min_points_seen_through = 2;
+  /** the laser that took both scans (SensorInfo: its beams), when known. When its beams
+   *  go all round, the free-space steps above take the whole circle for its field of
+   *  view, so that a sector of a 360° scan without returns is not taken for the
+   *  sensor's back (matching::makeRangeProfile (scan, sensor)). beam_count 0 (default):
+   *  unknown, the field of view is inferred from the returns. pcl_crf_eval and
+   *  pcl_crf_run pass each pair's ScanPair::sensor. */
+  SensorInfo sensor;
 };
 
 /** \brief \throws std::invalid_argument naming the first setting out of range. */

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pcl_crf/core/scan_pair.h>
+
 #include <Eigen/Core>
 
 namespace pcl_crf {
@@ -29,14 +31,33 @@ struct RangeProfile
   double step = 0.0;
   /** the farthest return [m]: beyond it, a direction without a return says nothing. */
   double max_range = 0.0;
-  /** true when the returns go all round (no gap wider than 1.5 steps): bearings wrap. */
+  /** true when the field of view goes all round: bearings wrap. Either no gap between
+   *  the returns is wider than 1.5 steps, or the sensor's beams go all round. */
   bool full_circle = false;
+  /** the field of view (unless full_circle), as bearings in the coordinates of
+   *  \c bearings: from field_first counter-clockwise to field_last, the first and last
+   *  return after their widest gap (the sensor's back). */
+  double field_first = 0.0;
+  double field_last = 0.0;
 };
 
 /** \brief The range profile of a scan in its own sensor frame (any point order).
  *  \throws std::invalid_argument for a non-finite point. */
 RangeProfile
 makeRangeProfile (const Eigen::Matrix2Xd& scan);
+
+/** \brief The range profile of a scan whose sensor is known (SensorInfo: beam_count
+ *  beams from angle_min, angle_increment apart). A sensor whose beams go all round has
+ *  no back: its profile is a full circle whatever its returns, so that a sector a 360°
+ *  laser saw nothing in (open space beyond its range, or a dark surface) is not taken
+ *  for its back, and a point there counts as seen through by seesThrough () (not by
+ *  seesThroughToAReturn ()). For other sensors, and for beam_count 0 (unknown), the
+ *  profile is makeRangeProfile (scan): the widest gap between the returns is the back
+ *  (beams at the edge of the view that saw nothing stay outside it). 
+ *  \throws std::invalid_argument for a non-finite point, or a sensor with beam_count
+ *          of 1 or below 0, or a non-finite or zero angle_increment or non-finite angle_min. */
+RangeProfile
+makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor);
 
 /** \brief true when the profile's sensor saw through \a point (in its frame): the
  *  point lies inside the field of view and either every return within one step of
