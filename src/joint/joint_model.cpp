@@ -1,4 +1,5 @@
 #include <pcl_crf/joint/joint_model.h>
+#include <pcl_crf/matching/range_profile.h>
 
 #include <cmath>
 #include <cstdio>
@@ -87,11 +88,7 @@ validateParameters (const JointParameters& p)
     bad ("max_average_neff must be > 1");
   if (p.segment_min_points_seen_through < 1)
     bad ("segment_min_points_seen_through must be >= 1");
-  if (p.sensor.beam_count != 0 &&
-      (p.sensor.beam_count < 2 || !std::isfinite (p.sensor.angle_min) || !std::isfinite (p.sensor.angle_increment) ||
-       p.sensor.angle_increment == 0.0))
-    bad ("sensor must have beam_count 0 (unknown), or at least 2 beams with a finite angle_min and a finite, "
-         "non-zero angle_increment; got " + std::to_string (p.sensor.beam_count) + " beams");
+  matching::describesBeams (p.sensor);  // throws for a sensor that describes no beams sensibly
   validateLadderOptions (p.inference);
   clustering::validateParameters (p.initial_clustering);
 }

@@ -108,7 +108,8 @@ bool
 inField (const RangeProfile& profile, double theta)
 {
   constexpr double kRounding = 1e-12;  // [rad]: a point on the first return's bearing wraps to just below 2π
-  return profile.full_circle || theta <= profile.field_last || theta >= profile.field_first + kTwoPi - kRounding;
+  const Eigen::Index m = profile.bearings.size ();
+  return profile.full_circle || theta <= profile.bearings (m - 1) || theta >= profile.bearings (0) + kTwoPi - kRounding;
 }
 
 /** The field of view from the returns: the widest gap between them is the sensor's back. */
@@ -120,8 +121,6 @@ inferField (RangeProfile& profile)
   profile.full_circle = gap <= 1.5 * profile.step;
   if (!profile.full_circle)
     startAfterGap (profile, widest);
-  profile.field_first = profile.bearings (0);
-  profile.field_last = profile.bearings (profile.bearings.size () - 1);
 }
 
 /** Whether the sensor's beams go all round (half a beam beyond the first and last). */
@@ -132,12 +131,13 @@ allRound (const SensorInfo& sensor)
   return static_cast<double> (sensor.beam_count) * increment >= kTwoPi - 0.5 * increment;
 }
 
-/** Whether \a sensor describes its beams (beam_count > 0), after checking it does so sensibly. */
+}  // namespace
+
 bool
-knownSensor (const SensorInfo& sensor)
+describesBeams (const SensorInfo& sensor)
 {
   const auto fail = [] (const std::string& what) {
-    throw std::invalid_argument ("[pcl_crf::matching::makeRangeProfile] the sensor " + what);
+    throw std::invalid_argument ("[pcl_crf::matching::describesBeams] the sensor " + what);
   };
   if (sensor.beam_count == 0)
     return false;
@@ -147,8 +147,6 @@ knownSensor (const SensorInfo& sensor)
     fail ("needs a finite angle_min and a finite, non-zero angle_increment");
   return true;
 }
-
-}  // namespace
 
 RangeProfile
 makeRangeProfile (const Eigen::Matrix2Xd& scan)
@@ -161,7 +159,7 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor)
 {
   if (!scan.allFinite ())
     throw std::invalid_argument ("[pcl_crf::matching::makeRangeProfile] the scan holds a non-finite point");
-  const bool from_sensor = knownSensor (sensor);
+  const bool from_sensor = describesBeams (sensor);
   const Eigen::Index m = scan.cols ();
   std::vector<Eigen::Index> order (static_cast<std::size_t> (m));
   std::iota (order.begin (), order.end (), Eigen::Index (0));
@@ -180,11 +178,8 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor)
     return profile;
   profile.step = medianStep (profile.bearings);
   profile.max_range = profile.ranges.maxCoeff ();
-  if (from_sensor && allRound (sensor)) {  // no back to infer
+  if (from_sensor && allRound (sensor))  // no back to infer
     profile.full_circle = true;
-    profile.field_first = profile.bearings (0);
-    profile.field_last = profile.bearings (m - 1);
-  }
   else
     inferField (profile);
   return profile;

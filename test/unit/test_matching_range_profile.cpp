@@ -298,13 +298,13 @@ TEST (RangeProfile, ALaserWithABackKeepsTheFieldOfViewOfItsReturns)
   for (const auto& sensor : {laser (91, -45.0, 1.0), laser (181, -90.0, 1.0), pcl_crf::SensorInfo{}}) {
     const auto profile = makeRangeProfile (scan, sensor);
     EXPECT_FALSE (profile.full_circle);
-    EXPECT_DOUBLE_EQ (profile.field_first, inferred.field_first);
-    EXPECT_DOUBLE_EQ (profile.field_last, inferred.field_last);
+    EXPECT_DOUBLE_EQ (profile.bearings (0), inferred.bearings (0));
+    EXPECT_DOUBLE_EQ (profile.bearings (profile.bearings.size () - 1), inferred.bearings (inferred.bearings.size () - 1));
     EXPECT_TRUE (seesThrough (profile, polar (15.0, 3.0), kLambda, kNoise));  // the opening
     EXPECT_FALSE (seesThrough (profile, polar (-60.0, 1.0), kLambda, kNoise));
   }
-  EXPECT_NEAR (inferred.field_first, -45.0 * kDegree, 1e-12);
-  EXPECT_NEAR (inferred.field_last, 45.0 * kDegree, 1e-12);
+  EXPECT_NEAR (inferred.bearings (0), -45.0 * kDegree, 1e-12);
+  EXPECT_NEAR (inferred.bearings (inferred.bearings.size () - 1), 45.0 * kDegree, 1e-12);
 }
 
 TEST (RangeProfile, ASensorThatDescribesNoBeamsSensiblyIsRejected)

@@ -32,19 +32,22 @@ struct RangeProfile
   /** the farthest return [m]: beyond it, a direction without a return says nothing. */
   double max_range = 0.0;
   /** true when the field of view goes all round: bearings wrap. Either no gap between
-   *  the returns is wider than 1.5 steps, or the sensor's beams go all round. */
+   *  the returns is wider than 1.5 steps, or the sensor's beams go all round. Otherwise
+   *  the field of view runs from the first to the last bearing, the widest gap between
+   *  the returns being the sensor's back. */
   bool full_circle = false;
-  /** the field of view (unless full_circle), as bearings in the coordinates of
-   *  \c bearings: from field_first counter-clockwise to field_last, the first and last
-   *  return after their widest gap (the sensor's back). */
-  double field_first = 0.0;
-  double field_last = 0.0;
 };
 
 /** \brief The range profile of a scan in its own sensor frame (any point order).
  *  \throws std::invalid_argument for a non-finite point. */
 RangeProfile
 makeRangeProfile (const Eigen::Matrix2Xd& scan);
+
+/** \brief Whether \a sensor describes its beams: false for beam_count 0 (unknown).
+ *  \throws std::invalid_argument for a beam_count of 1 or below 0, a non-finite
+ *          angle_min, or a non-finite or zero angle_increment. */
+bool
+describesBeams (const SensorInfo& sensor);
 
 /** \brief The range profile of a scan whose sensor is known (SensorInfo: beam_count
  *  beams from angle_min, angle_increment apart). A sensor whose beams go all round has
@@ -53,9 +56,9 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan);
  *  for its back, and a point there counts as seen through by seesThrough () (not by
  *  seesThroughToAReturn ()). For other sensors, and for beam_count 0 (unknown), the
  *  profile is makeRangeProfile (scan): the widest gap between the returns is the back
- *  (beams at the edge of the view that saw nothing stay outside it). 
- *  \throws std::invalid_argument for a non-finite point, or a sensor with beam_count
- *          of 1 or below 0, or a non-finite or zero angle_increment or non-finite angle_min. */
+ *  (beams at the edge of the view that saw nothing stay outside it).
+ *  \throws std::invalid_argument for a non-finite point, or a sensor describesBeams ()
+ *          rejects. */
 RangeProfile
 makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor);
 
