@@ -15,6 +15,12 @@
 #                    shipped SICK-like scans; BEAMS=1081 FOV=270 gives Hokuyo-like
 #                    scans of the same kind of street, to test the 361-beam models
 #                    on a sensor they were not trained on).
+#   NOISE, DROPOUT   range noise std [m] and fraction of beams without a return
+#                    (default 0.01 and 0.01, as shipped)
+#   ODOM_NOISE       odometry noise std as X,Y,YAW [m, m, rad] (default 0.1,0.05,0.02)
+#   YAW_RATE         the sensor's turn rate [rad/s] (default 0: driving straight)
+#                    These four give harder splits of the same streets
+#                    (scripts/robustness_table.sh).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -32,11 +38,20 @@ fov=${FOV:-180}
 for value in "$beams" "$fov"; do
   [[ "$value" =~ ^[1-9][0-9]*$ ]] || { echo "generate_default.sh: BEAMS and FOV must be positive integers, got '$value'" >&2; exit 1; }
 done
+noise=${NOISE:-0.01}
+dropout=${DROPOUT:-0.01}
+odom_noise=${ODOM_NOISE:-0.1,0.05,0.02}
+yaw_rate=${YAW_RATE:-0}
+number='[0-9]+([.][0-9]+)?'
+for value in "$noise" "$dropout" "$yaw_rate"; do
+  [[ "$value" =~ ^-?$number$ ]] || { echo "generate_default.sh: NOISE, DROPOUT and YAW_RATE must be decimal numbers, got '$value'" >&2; exit 1; }
+done
+[[ "$odom_noise" =~ ^$number,$number,$number$ ]] || { echo "generate_default.sh: ODOM_NOISE must be X,Y,YAW (three non-negative numbers), got '$odom_noise'" >&2; exit 1; }
 
 # Every setting spelled out, so a change of a default does not change the dataset.
-common=(--pairs 30 --beams "$beams" --fov "$fov" --range 30 --noise 0.01 --dropout 0.01
-        --speed 10 --yaw-rate 0 --scene mixed --moving -1 --object-speed -1
-        --spacing travel --travel 2,4 --odom-noise 0.1,0.05,0.02 --legs 0.5
+common=(--pairs 30 --beams "$beams" --fov "$fov" --range 30 --noise "$noise" --dropout "$dropout"
+        --speed 10 --yaw-rate "$yaw_rate" --scene mixed --moving -1 --object-speed -1
+        --spacing travel --travel 2,4 --odom-noise "$odom_noise" --legs 0.5
         --name-prefix pair_)
 
 for split in ${SPLITS:-train:1001 test:2002}; do

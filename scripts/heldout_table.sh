@@ -51,23 +51,6 @@ for split in "${names[@]}" pooled; do
   echo "## $split ($(find -L "$out/$split/" -mindepth 2 -maxdepth 2 -name pair.txt | wc -l) pairs)"
   "$bin/pcl_crf_eval" "$out/$split" --method "$methods" --models "$models" -q --format csv \
       --output "$out/$split.csv"
-  awk -F, '
-    NR == 1 { next }
-    $2 == "association_accuracy" || $2 == "cluster_accuracy" || $2 == "v_measure" ||
-    $2 == "ego_translation_error" || $2 == "moving_translation_error" {
-      if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
-      value[$1, $2] = $4
-    }
-    END {
-      printf "| method | association accuracy | motion-detection accuracy | V | ego motion [m] | moving objects [m] |\n"
-      printf "|---|---|---|---|---|---|\n"
-      for (k = 1; k <= n; ++k) {
-        m = order[k]
-        printf "| %s | %s | %s | %s | %s | %s |\n", m, fmt(value[m, "association_accuracy"]),
-               fmt(value[m, "cluster_accuracy"]), fmt(value[m, "v_measure"]),
-               fmt(value[m, "ego_translation_error"]), fmt(value[m, "moving_translation_error"])
-      }
-    }
-    function fmt(v) { return v == "" ? "-" : sprintf("%.3f", v) }' "$out/$split.csv"
+  awk -v header=1 -f scripts/score_table.awk "$out/$split.csv"
   echo
 done
