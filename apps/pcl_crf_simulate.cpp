@@ -49,7 +49,7 @@ const std::vector<std::string> kValueOptions{
     "--range",     "--noise",        "--dropout",    "--speed",    "--yaw-rate", "--moving",
     "--object-speed", "--scene",     "--spacing",    "--travel",   "--scan-rate", "--odom-noise",
     "--legs",      "--name-prefix"};
-const std::vector<std::string> kSwitches{"-h", "--help", "-q"};
+const std::vector<std::string> kSwitches{"-h", "--help", "-q", "--no-return-points"};
 
 std::string
 fmt (double value)
@@ -92,6 +92,8 @@ printHelp (const char* program)
   line ("--legs P", "fraction of pedestrians simulated as two swinging legs, [0, 1] (default " +
                         fmt (d.traffic.legged_pedestrian_fraction) + ")");
   line ("--name-prefix TEXT", "pair folder name prefix (default \"" + d.name_prefix + "\")");
+  line ("--no-return-points", "write beams without a return as points at the maximum range (static world, no "
+                              "match), as a converter that keeps them would; the dataset format leaves them out");
   line ("-q", "quiet: no per-pair progress");
   line ("-h, --help", "this help");
 }
@@ -224,6 +226,7 @@ parseOptions (int argc, char** argv)
     c.traffic.legged_pedestrian_fraction = toDouble ("--legs", text);
   value (argc, argv, "--name-prefix", c.name_prefix);
   o.quiet = find_switch (argc, argv, "-q");
+  o.config.laser.no_return_points = find_switch (argc, argv, "--no-return-points");
   try {
     sim::validateSimulatorConfig (c);
   }
@@ -248,6 +251,8 @@ describeConfig (const Options& o)
       << "," << fmt (c.travel_max) << " scan_rate " << fmt (c.scan_rate) << " odom_noise "
       << fmt (c.odometry_noise[0]) << "," << fmt (c.odometry_noise[1]) << "," << fmt (c.odometry_noise[2])
       << " legs " << fmt (c.traffic.legged_pedestrian_fraction) << " name_prefix \"" << c.name_prefix << "\"";
+  if (c.laser.no_return_points)  // only when set: the default manifests stay as they were
+    out << " no_return_points 1";
   return out.str ();
 }
 

@@ -19,7 +19,9 @@
 #                    (default 0.01 and 0.01, as shipped)
 #   ODOM_NOISE       odometry noise std as X,Y,YAW [m, m, rad] (default 0.1,0.05,0.02)
 #   YAW_RATE         the sensor's turn rate [rad/s] (default 0: driving straight)
-#                    These four give harder splits of the same streets
+#   NO_RETURN_POINTS 1: beams without a return written as points at the maximum
+#                    range (pcl_crf_simulate --no-return-points; default 0: left out)
+#                    These five give harder splits of the same streets
 #                    (scripts/robustness_table.sh).
 set -euo pipefail
 
@@ -47,12 +49,18 @@ for value in "$noise" "$dropout" "$yaw_rate"; do
   [[ "$value" =~ ^-?$number$ ]] || { echo "generate_default.sh: NOISE, DROPOUT and YAW_RATE must be decimal numbers, got '$value'" >&2; exit 1; }
 done
 [[ "$odom_noise" =~ ^$number,$number,$number$ ]] || { echo "generate_default.sh: ODOM_NOISE must be X,Y,YAW (three non-negative numbers), got '$odom_noise'" >&2; exit 1; }
+extra=()
+case "${NO_RETURN_POINTS:-0}" in
+  0) ;;
+  1) extra=(--no-return-points) ;;
+  *) echo "generate_default.sh: NO_RETURN_POINTS must be 0 or 1, got '${NO_RETURN_POINTS}'" >&2; exit 1 ;;
+esac
 
 # Every setting spelled out, so a change of a default does not change the dataset.
 common=(--pairs 30 --beams "$beams" --fov "$fov" --range 30 --noise "$noise" --dropout "$dropout"
         --speed 10 --yaw-rate "$yaw_rate" --scene mixed --moving -1 --object-speed -1
         --spacing travel --travel 2,4 --odom-noise "$odom_noise" --legs 0.5
-        --name-prefix pair_)
+        --name-prefix pair_ "${extra[@]}")
 
 for split in ${SPLITS:-train:1001 test:2002}; do
   name=${split%%:*}

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Scores the shipped models on harder versions of the default dataset's streets, one
 # condition changed at a time: more range noise, more beams without a return, worse
-# odometry, a turning sensor. Each condition is a fresh split (data/generate_default.sh
+# odometry, a turning sensor, and a dataset that kept its beams without a return as
+# points at the maximum range (which the methods leave out). Each condition is a fresh split (data/generate_default.sh
 # with the condition's setting, seeds no model has seen), scored with pcl_crf_eval;
 # one Markdown table, a row per condition and method.
 #
@@ -25,6 +26,7 @@ conditions=(
   "10 % of beams without a return|DROPOUT=0.1"
   "odometry noise ×3|ODOM_NOISE=0.3,0.15,0.06"
   "turning at 0.3 rad/s|YAW_RATE=0.3"
+  "beams without a return kept as points at the maximum range|NO_RETURN_POINTS=1"
 )
 
 header=1

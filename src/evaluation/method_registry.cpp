@@ -2,6 +2,7 @@
 #include <pcl_crf/evaluation/joint_methods.h>
 #include <pcl_crf/evaluation/matching_methods.h>
 #include <pcl_crf/evaluation/method.h>
+#include <pcl_crf/evaluation/no_return_points.h>
 #include <pcl_crf/evaluation/pipeline_methods.h>
 
 #include <functional>
@@ -47,7 +48,7 @@ createEvaluationMethod (const std::string& name, const MethodSettings& settings)
 {
   for (const auto& entry : registry ())
     if (entry.first == name)
-      return entry.second (settings);
+      return ignoringNoReturnPoints (entry.second (settings));
   std::string known;
   for (const auto& entry : registry ())
     known += (known.empty () ? "" : ", ") + entry.first;

@@ -60,6 +60,47 @@ canonical (const Rigid2d& T)
   return makeRigid2d (v.x (), v.y (), v.z ());
 }
 
+/** \a scan with a point at the maximum range for every beam without a return (its
+ *  beams in \a beams), labelled as the static world (id 0); \a position receives the new
+ *  index of every original point. */
+void
+addNoReturnPoints (const SensorInfo& sensor, const std::vector<int>& beams, Eigen::Matrix2Xd& scan,
+                   std::vector<int>& labels, std::vector<int>& position)
+{
+  Eigen::Matrix2Xd all (2, sensor.beam_count);
+  std::vector<int> all_labels (static_cast<std::size_t> (sensor.beam_count), 0);
+  for (int b = 0; b < sensor.beam_count; ++b) {
+    const double angle = sensor.angle_min + b * sensor.angle_increment;
+    all.col (b) << storedCoordinate (sensor.range_max * std::cos (angle)),
+        storedCoordinate (sensor.range_max * std::sin (angle));
+  }
+  position.assign (beams.size (), -1);
+  for (std::size_t k = 0; k < beams.size (); ++k) {
+    all.col (beams[k]) = scan.col (static_cast<Eigen::Index> (k));
+    all_labels[static_cast<std::size_t> (beams[k])] = labels[k];
+    position[k] = beams[k];
+  }
+  scan = std::move (all);
+  labels = std::move (all_labels);
+}
+
+/** Both scans of \a pair with their beams without a return as points at the maximum
+ *  range (LaserConfig::no_return_points); the true matches follow their points. */
+void
+keepNoReturnBeams (ScanPair& pair, const std::vector<int>& source_beams, const std::vector<int>& target_beams)
+{
+  std::vector<int> source_position, target_position;
+  addNoReturnPoints (pair.sensor, source_beams, pair.source, pair.source_object, source_position);
+  addNoReturnPoints (pair.sensor, target_beams, pair.target, pair.target_object, target_position);
+  std::vector<int> matches (static_cast<std::size_t> (pair.source.cols ()), kNoMatch);
+  for (std::size_t k = 0; k < source_position.size (); ++k) {
+    const int j = pair.source_match[k];
+    matches[static_cast<std::size_t> (source_position[k])] =
+        j == kNoMatch ? kNoMatch : target_position[static_cast<std::size_t> (j)];
+  }
+  pair.source_match = std::move (matches);
+}
+
 }  // namespace
 
 void
@@ -255,6 +296,8 @@ ScanPairSimulator::simulate (std::size_t index, PairSummary* summary, PairScene*
   pair.odometry.interval = duration;
 
   assignTrueMatches (pair, c.laser.range_noise);
+  if (c.laser.no_return_points)
+    keepNoReturnBeams (pair, source.beams, target.beams);
 
   if (pair_scene) {
     pair_scene->scene = std::move (visible_scene);

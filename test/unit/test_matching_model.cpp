@@ -318,8 +318,9 @@ TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)
     for (int i = 0; i < pair.source.cols (); ++i) {
       EXPECT_EQ (result.marginals[i].size (), result.candidates.count (i) + 1);
       EXPECT_NEAR (result.marginals[i].sum (), 1.0, 1e-9);
-      if (result.matches[i] != pcl_crf::kNoMatch)
+      if (result.matches[i] != pcl_crf::kNoMatch) {
         EXPECT_GE (result.candidates.find (i, result.matches[i]), 0) << i;
+      }
     }
     thinned += associationAccuracy (result.matches, pair.source_match) / pairs.size ();
     full += associationAccuracy (m::matchScans (pair.source, pair.target, guess, at_full_resolution).matches,

@@ -659,3 +659,53 @@ TEST (SimulatorConfig, RejectsBadSettings)
 }
 
 }  // namespace
+
+namespace {
+
+TEST (SimulatorNoReturnPoints, KeepEveryBeamAndAddOnlyUnmatchedWorldPointsAtTheMaximumRange)
+{
+  sim::SimulatorConfig config;
+  config.seed = 7;
+  const ScanPair plain = sim::ScanPairSimulator (config).simulate (3);
+  config.laser.no_return_points = true;
+  const ScanPair kept = sim::ScanPairSimulator (config).simulate (3);
+  ASSERT_EQ (kept.source.cols (), config.laser.beam_count);
+  ASSERT_EQ (kept.target.cols (), config.laser.beam_count);
+  ASSERT_LT (plain.source.cols (), kept.source.cols ());  // some beams saw nothing
+  pcl_crf::validateScanPair (kept, "no-return points");
+  // The plain scans' points in order, then the added ones: unmatched world points at
+  // the maximum range in their beam's direction.
+  std::vector<int> position;  // of each plain source point in the kept scan
+  for (Eigen::Index i = 0, k = 0; i < kept.source.cols (); ++i) {
+    const bool original = k < plain.source.cols () && kept.source.col (i) == plain.source.col (k);
+    if (original) {
+      EXPECT_EQ (kept.source_object[i], plain.source_object[k]);
+      position.push_back (static_cast<int> (i));
+      ++k;
+      continue;
+    }
+    EXPECT_NEAR (kept.source.col (i).norm (), config.laser.range_max, 1e-5 * config.laser.range_max) << i;
+    const pcl_crf::SensorInfo sensor = kept.sensor;
+    EXPECT_NEAR (std::atan2 (kept.source (1, i), kept.source (0, i)), sensor.angle_min + i * sensor.angle_increment,
+                 1e-6)
+        << i;
+    EXPECT_EQ (kept.source_object[i], 0) << i;
+    EXPECT_EQ (kept.source_match[i], pcl_crf::kNoMatch) << i;
+  }
+  ASSERT_EQ (position.size (), static_cast<std::size_t> (plain.source.cols ()));
+  for (std::size_t k = 0; k < position.size (); ++k) {
+    const int j = plain.source_match[k];
+    const int j_kept = kept.source_match[static_cast<std::size_t> (position[k])];
+    if (j == pcl_crf::kNoMatch) {
+      EXPECT_EQ (j_kept, pcl_crf::kNoMatch) << k;
+    }
+    else {
+      ASSERT_GE (j_kept, 0) << k;
+      EXPECT_EQ (kept.target.col (j_kept), plain.target.col (j)) << k;
+    }
+  }
+  EXPECT_EQ (kept.objects.size (), plain.objects.size ());
+  EXPECT_TRUE (kept.odometry.T_source_target.isApprox (plain.odometry.T_source_target, 0.0));
+}
+
+}  // namespace

@@ -84,8 +84,10 @@ struct MethodSettings
 std::vector<std::string>
 availableEvaluationMethods ();
 
-/** \brief Builds the named method. \throws std::invalid_argument for an unknown
- *  name, listing the known ones. */
+/** \brief Builds the named method. It sees only the returns of a pair, the points
+ *  nearer than the sensor's maximum range, and predicts the others in its static
+ *  world without a match (ignoringNoReturnPoints () in pcl_crf/evaluation/no_return_points.h).
+ *  \throws std::invalid_argument for an unknown name, listing the known ones. */
 std::unique_ptr<EvaluationMethod>
 createEvaluationMethod (const std::string& name, const MethodSettings& settings = {});
 

@@ -23,6 +23,10 @@ struct LaserConfig
   double range_noise = 0.01;
   /** probability that a beam returns nothing although it hits a surface, in [0, 1). */
   double dropout_probability = 0.01;
+  /** write every beam without a return as a point at range_max, labelled as the static
+   *  world and never matched (ScanPairSimulator), as a converter that keeps such beams
+   *  would; the dataset format leaves them out (data/README.md). */
+  bool no_return_points = false;
 
   /** \brief The beam geometry: angle_min = -fov / 2 and angle_increment =
    *  fov / (beam_count - 1), or fov / beam_count for a full 2 pi turn (so the

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <pcl_crf/core/prediction.h>
+#include <pcl_crf/core/scan_pair.h>
+#include <pcl_crf/evaluation/method.h>
+
+#include <memory>
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Whether a point at \a range [m] is a return of a laser whose maximum range
+ *  is \a range_max [m]: nearer than it (ROS's sensor_msgs/LaserScan convention, which
+ *  the log readers follow; a laser reports range_max or more for a beam without one),
+ *  by more than 1e-5 of it (a point stored at range_max in single precision may read
+ *  back a few ulp nearer). Every point is a return when range_max is not a positive
+ *  finite number. */
+bool
+isReturn (double range, double range_max);
+
+/** \brief A pair reduced to its returns (isReturn with the pair's SensorInfo::range_max),
+ *  with where each kept point came from. The reduced pair's labels and true matches are
+ *  the kept points' (a true match onto a point left out becomes kNoMatch).
+ *
+ *  A dataset should leave beams without a return out (data/README.md); one converted
+ *  with them kept as points at the maximum range would otherwise show every method an
+ *  arc that moves with the sensor.
+ */
+struct PairReturns
+{
+  ScanPair pair;
+  /** per kept source / target point: its index in the original scan, increasing. */
+  std::vector<int> source_index;
+  std::vector<int> target_index;
+  /** the original scans' sizes. */
+  int source_size = 0;
+  int target_size = 0;
+
+  /** \brief true when no point was left out. */
+  bool
+  keepsEveryPoint () const
+  {
+    return static_cast<int> (source_index.size ()) == source_size &&
+           static_cast<int> (target_index.size ()) == target_size;
+  }
+};
+
+/** \brief The returns of \a pair (see PairReturns). */
+PairReturns
+keepReturns (const ScanPair& pair);
+
+/** \brief A prediction for the reduced pair of \a returns as one for the original pair:
+ *  the points left out saw the background, so they join the predicted static world
+ *  (outliers when there is none) without a match; matches index the original target
+ *  scan.
+ *  \throws std::invalid_argument when \a reduced does not fit the reduced pair. */
+Prediction
+liftToAllPoints (const Prediction& reduced, const PairReturns& returns);
+
+/** \brief \a method seeing only the returns of every pair (keepReturns) when it learns
+ *  and when it predicts; its predictions are lifted back to every point
+ *  (liftToAllPoints: the others join the static world, unmatched). Pairs without points at or beyond the maximum range go to
+ *  \a method unchanged. A pair with no return in one of its scans is reported as an
+ *  std::invalid_argument naming the pair. createEvaluationMethod () wraps every method
+ *  in it. */
+std::unique_ptr<EvaluationMethod>
+ignoringNoReturnPoints (std::unique_ptr<EvaluationMethod> method);
+
+}  // namespace pcl_crf

@@ -1,0 +1,178 @@
+// Points at the laser's maximum range are beams without a return: the evaluation methods
+// leave them out and predict them in the static world, unmatched.
+#include <pcl_crf/evaluation/method.h>
+#include <pcl_crf/evaluation/no_return_points.h>
+#include <pcl_crf/io/dataset_io.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace {
+
+using namespace pcl_crf;
+
+const std::string kTestDir = std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test/";
+const std::string kModels = std::string (PCL_CRF_SOURCE_DIR) + "/data/models/";
+
+/** A point at the maximum range in the direction of beam \a bearing, as float (a PCD). */
+Eigen::Vector2d
+atMaximumRange (double bearing, double range_max)
+{
+  const float x = static_cast<float> (range_max * std::cos (bearing));
+  const float y = static_cast<float> (range_max * std::sin (bearing));
+  return {x, y};
+}
+
+/** \a pair with a point at the maximum range inserted before every \a every-th point of
+ *  both scans (a dataset that kept its beams without a return), labelled as the static
+ *  world and unmatched; the true matches follow their target points. */
+ScanPair
+withMaximumRangePoints (const ScanPair& pair, int every)
+{
+  ScanPair out = pair;
+  const int world = pair.staticObjectId ();
+  const auto interleave = [&] (const Eigen::Matrix2Xd& scan, const std::vector<int>& labels, Eigen::Matrix2Xd& points,
+                               std::vector<int>& new_labels, std::vector<int>& position) {
+    std::vector<Eigen::Vector2d> kept;
+    new_labels.clear ();
+    position.assign (static_cast<std::size_t> (scan.cols ()), -1);
+    for (Eigen::Index i = 0; i < scan.cols (); ++i) {
+      if (i % every == 0) {
+        kept.push_back (atMaximumRange (std::atan2 (scan (1, i), scan (0, i)) - 1e-4, pair.sensor.range_max));
+        new_labels.push_back (world);
+      }
+      position[static_cast<std::size_t> (i)] = static_cast<int> (kept.size ());
+      kept.push_back (scan.col (i));
+      new_labels.push_back (labels[static_cast<std::size_t> (i)]);
+    }
+    points.resize (2, static_cast<Eigen::Index> (kept.size ()));
+    for (std::size_t k = 0; k < kept.size (); ++k)
+      points.col (static_cast<Eigen::Index> (k)) = kept[k];
+  };
+  std::vector<int> source_position, target_position;
+  interleave (pair.source, pair.source_object, out.source, out.source_object, source_position);
+  interleave (pair.target, pair.target_object, out.target, out.target_object, target_position);
+  out.source_match.assign (static_cast<std::size_t> (out.source.cols ()), kNoMatch);
+  for (std::size_t i = 0; i < pair.source_match.size (); ++i) {
+    const int j = pair.source_match[i];
+    out.source_match[static_cast<std::size_t> (source_position[i])] =
+        j == kNoMatch ? kNoMatch : target_position[static_cast<std::size_t> (j)];
+  }
+  out.sensor.beam_count = static_cast<int> (std::max (out.source.cols (), out.target.cols ()));
+  return out;
+}
+
+TEST (NoReturnPoints, AReturnIsNearerThanTheMaximumRange)
+{
+  EXPECT_TRUE (isReturn (29.9, 30.0));
+  EXPECT_FALSE (isReturn (30.0, 30.0));
+  EXPECT_FALSE (isReturn (30.5, 30.0));
+  EXPECT_FALSE (isReturn (atMaximumRange (0.3, 30.0).norm (), 30.0));  // read back from floats
+  EXPECT_TRUE (isReturn (29.99, 30.0));                                  // 1 cm short is a return
+  EXPECT_TRUE (isReturn (1e6, 0.0));                                     // range unknown: every point
+  EXPECT_TRUE (isReturn (1e6, std::numeric_limits<double>::infinity ()));
+}
+
+TEST (NoReturnPoints, KeepReturnsRemapsLabelsAndTrueMatches)
+{
+  ScanPair pair;
+  pair.name = "hand-made";
+  pair.sensor.range_max = 10.0;
+  pair.source.resize (2, 4);
+  pair.source << 1.0, 10.0, 2.0, 0.0,  //
+      0.0, 0.0, 1.0, 3.0;
+  pair.target.resize (2, 3);
+  pair.target << 0.0, 1.0, 2.0,  //
+      10.0, 0.5, 1.5;
+  pair.source_object = {0, 0, 1, 0};
+  pair.target_object = {0, 0, 1};
+  pair.source_match = {1, 0, 2, 0};  // the last one's match is left out
+  const PairReturns returns = keepReturns (pair);
+  EXPECT_EQ (returns.source_index, (std::vector<int>{0, 2, 3}));
+  EXPECT_EQ (returns.target_index, (std::vector<int>{1, 2}));
+  EXPECT_FALSE (returns.keepsEveryPoint ());
+  EXPECT_EQ (returns.pair.source.cols (), 3);
+  EXPECT_EQ (returns.pair.target.cols (), 2);
+  EXPECT_EQ (returns.pair.source_object, (std::vector<int>{0, 1, 0}));
+  EXPECT_EQ (returns.pair.target_object, (std::vector<int>{0, 1}));
+  EXPECT_EQ (returns.pair.source_match, (std::vector<int>{0, 1, kNoMatch}));
+  EXPECT_TRUE (returns.pair.source.col (1).isApprox (Eigen::Vector2d (2.0, 1.0)));
+
+  Prediction reduced;
+  reduced.source_match = {1, kNoMatch, 0};
+  reduced.source_cluster = {0, 1, kOutlierCluster};
+  reduced.cluster_motions.assign (2, Rigid2d::Identity ());
+  reduced.static_cluster = 1;
+  const Prediction all = liftToAllPoints (reduced, returns);
+  EXPECT_EQ (all.source_match, (std::vector<int>{2, kNoMatch, kNoMatch, 1}));
+  EXPECT_EQ (all.source_cluster, (std::vector<int>{0, 1, 1, kOutlierCluster}));  // left out: the static world
+  EXPECT_EQ (all.static_cluster, 1);
+
+  reduced.static_cluster = -1;
+  EXPECT_EQ (liftToAllPoints (reduced, returns).source_cluster[1], kOutlierCluster);
+  reduced.source_match = {1, 2, 0};  // the reduced target has two points
+  EXPECT_THROW (liftToAllPoints (reduced, returns), std::invalid_argument);
+  reduced.source_match = {1, 0};
+  EXPECT_THROW (liftToAllPoints (reduced, returns), std::invalid_argument);
+}
+
+TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheMaximumRange)
+{
+  // Test pair 16 (a car moving 3.8 m) with a point at the maximum range before every
+  // fifth point: the method sees the pair's own returns, so its answer on them is the
+  // answer without the extra points, and every extra point is static and unmatched.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  const ScanPair padded = withMaximumRangePoints (pair, 5);
+  ASSERT_GT (padded.source.cols (), pair.source.cols () + 50);
+  validateScanPair (padded, "padded pair_0016");
+  const auto method = createEvaluationMethod ("joint");
+  method->loadModel (kModels + "joint.model");
+  const Prediction plain = method->predict (pair);
+  const Prediction padded_prediction = method->predict (padded);
+  ASSERT_EQ (padded_prediction.source_cluster.size (), static_cast<std::size_t> (padded.source.cols ()));
+  EXPECT_TRUE (padded_prediction.T_source_target.isApprox (plain.T_source_target, 0.0));
+  ASSERT_GE (plain.static_cluster, 0);
+  EXPECT_EQ (padded_prediction.static_cluster, plain.static_cluster);
+  std::size_t k = 0;  // over the original points
+  for (Eigen::Index i = 0; i < padded.source.cols (); ++i) {
+    const auto at = static_cast<std::size_t> (i);
+    if (!isReturn (padded.source.col (i).norm (), pair.sensor.range_max)) {
+      EXPECT_EQ (padded_prediction.source_cluster[at], plain.static_cluster) << i;
+      EXPECT_EQ (padded_prediction.source_match[at], kNoMatch) << i;
+      continue;
+    }
+    EXPECT_EQ (padded_prediction.source_cluster[at], plain.source_cluster[k]) << i;
+    const int j = plain.source_match[k];
+    if (j == kNoMatch) {
+      EXPECT_EQ (padded_prediction.source_match[at], kNoMatch) << i;
+    }
+    else {
+      ASSERT_GE (padded_prediction.source_match[at], 0) << i;
+      EXPECT_TRUE (padded.target.col (padded_prediction.source_match[at]).isApprox (pair.target.col (j), 0.0)) << i;
+    }
+    ++k;
+  }
+  EXPECT_EQ (k, static_cast<std::size_t> (pair.source.cols ()));
+}
+
+TEST (NoReturnPoints, AScanWithoutAReturnIsReportedByName)
+{
+  ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  pair.name = "all-far";
+  for (Eigen::Index i = 0; i < pair.source.cols (); ++i)
+    pair.source.col (i) = atMaximumRange (0.01 * static_cast<double> (i), pair.sensor.range_max);
+  const auto method = createEvaluationMethod ("icp");
+  try {
+    method->predict (pair);
+    FAIL () << "expected std::invalid_argument";
+  }
+  catch (const std::invalid_argument& e) {
+    EXPECT_NE (std::string (e.what ()).find ("all-far"), std::string::npos) << e.what ();
+    EXPECT_NE (std::string (e.what ()).find ("source"), std::string::npos) << e.what ();
+  }
+}
+
+}  // namespace
