@@ -1,5 +1,6 @@
 #include <pcl_crf/evaluation/no_return_points.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,19 @@ returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
     if (isReturn (scan.col (i).norm (), range_max))
       kept.push_back (static_cast<int> (i));
   return kept;
+}
+
+/** Whether a point of either scan of \a pair is not a return. */
+bool
+holdsNoReturnPoint (const ScanPair& pair)
+{
+  const auto anyBeyond = [&pair] (const Eigen::Matrix2Xd& scan) {
+    for (Eigen::Index i = 0; i < scan.cols (); ++i)
+      if (!isReturn (scan.col (i).norm (), pair.sensor.range_max))
+        return true;
+    return false;
+  };
+  return anyBeyond (pair.source) || anyBeyond (pair.target);
 }
 
 /** The columns \a kept of \a points, in that order. */
@@ -72,10 +86,14 @@ public:
   void
   train (const std::vector<ScanPair>& training_pairs) override
   {
+    if (std::none_of (training_pairs.begin (), training_pairs.end (), holdsNoReturnPoint)) {
+      method_->train (training_pairs);  // the usual case: no copy
+      return;
+    }
     std::vector<ScanPair> returns;
     returns.reserve (training_pairs.size ());
     for (const ScanPair& pair : training_pairs)
-      returns.push_back (checkedReturns (pair).pair);
+      returns.push_back (holdsNoReturnPoint (pair) ? checkedReturns (pair).pair : pair);
     method_->train (returns);
   }
 
@@ -94,9 +112,9 @@ public:
   Prediction
   predict (const ScanPair& pair) override
   {
+    if (!holdsNoReturnPoint (pair))
+      return method_->predict (pair);  // the usual case: no copy of the pair
     const PairReturns returns = checkedReturns (pair);
-    if (returns.keepsEveryPoint ())
-      return method_->predict (pair);
     return liftToAllPoints (method_->predict (returns.pair), returns);
   }
 

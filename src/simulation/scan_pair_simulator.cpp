@@ -61,11 +61,11 @@ canonical (const Rigid2d& T)
 }
 
 /** \a scan with a point at the maximum range for every beam without a return (its
- *  beams in \a beams), labelled as the static world (id 0); \a position receives the new
- *  index of every original point. */
+ *  points' beams in \a beams), labelled as the static world (id 0): point k moves to
+ *  index beams[k]. */
 void
 addNoReturnPoints (const SensorInfo& sensor, const std::vector<int>& beams, Eigen::Matrix2Xd& scan,
-                   std::vector<int>& labels, std::vector<int>& position)
+                   std::vector<int>& labels)
 {
   Eigen::Matrix2Xd all (2, sensor.beam_count);
   std::vector<int> all_labels (static_cast<std::size_t> (sensor.beam_count), 0);
@@ -74,11 +74,9 @@ addNoReturnPoints (const SensorInfo& sensor, const std::vector<int>& beams, Eige
     all.col (b) << storedCoordinate (sensor.range_max * std::cos (angle)),
         storedCoordinate (sensor.range_max * std::sin (angle));
   }
-  position.assign (beams.size (), -1);
   for (std::size_t k = 0; k < beams.size (); ++k) {
     all.col (beams[k]) = scan.col (static_cast<Eigen::Index> (k));
     all_labels[static_cast<std::size_t> (beams[k])] = labels[k];
-    position[k] = beams[k];
   }
   scan = std::move (all);
   labels = std::move (all_labels);
@@ -89,14 +87,13 @@ addNoReturnPoints (const SensorInfo& sensor, const std::vector<int>& beams, Eige
 void
 keepNoReturnBeams (ScanPair& pair, const std::vector<int>& source_beams, const std::vector<int>& target_beams)
 {
-  std::vector<int> source_position, target_position;
-  addNoReturnPoints (pair.sensor, source_beams, pair.source, pair.source_object, source_position);
-  addNoReturnPoints (pair.sensor, target_beams, pair.target, pair.target_object, target_position);
+  addNoReturnPoints (pair.sensor, source_beams, pair.source, pair.source_object);
+  addNoReturnPoints (pair.sensor, target_beams, pair.target, pair.target_object);
   std::vector<int> matches (static_cast<std::size_t> (pair.source.cols ()), kNoMatch);
-  for (std::size_t k = 0; k < source_position.size (); ++k) {
+  for (std::size_t k = 0; k < source_beams.size (); ++k) {
     const int j = pair.source_match[k];
-    matches[static_cast<std::size_t> (source_position[k])] =
-        j == kNoMatch ? kNoMatch : target_position[static_cast<std::size_t> (j)];
+    matches[static_cast<std::size_t> (source_beams[k])] =
+        j == kNoMatch ? kNoMatch : target_beams[static_cast<std::size_t> (j)];
   }
   pair.source_match = std::move (matches);
 }
