@@ -5,7 +5,9 @@
 #include <pcl_crf/matching/matching_learner.h>
 #include <pcl_crf/metrics/pair_scores.h>
 
+#include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 namespace pcl_crf {
@@ -89,39 +91,78 @@ clusterNode (const LadderGeometry& geometry, const LadderTruth& truth, int i)
   return {f, truth.cluster[i]};
 }
 
-}  // namespace
+/** Per pair of \a pairs: \a metric of estimateJoint's result with \a model, run as
+ *  pcl_crf_eval runs it. */
+std::vector<double>
+trainingScores (const std::vector<ScanPair>& pairs, const JointModel& model, double PairScores::*metric)
+{
+  std::vector<double> scores;
+  JointParameters parameters;
+  for (const ScanPair& pair : pairs) {
+    parameters.sensor = pair.sensor;  // as pcl_crf_eval runs it
+    scores.push_back (scorePair (pair, toPrediction (pair.source, estimateJoint (pair.source, pair.target, pair.odometry,
+                                                                                 model, parameters))).*metric);
+  }
+  return scores;
+}
+
+double
+mean (const std::vector<double>& values)
+{
+  return std::accumulate (values.begin (), values.end (), 0.0) / static_cast<double> (values.size ());
+}
 
 double
 meanTrainingScore (const std::vector<ScanPair>& pairs, const JointModel& model, double PairScores::*metric)
 {
-  double sum = 0.0;
-  JointParameters parameters;
-  for (const ScanPair& pair : pairs) {
-    parameters.sensor = pair.sensor;  // as pcl_crf_eval runs it
-    sum += scorePair (pair, toPrediction (pair.source, estimateJoint (pair.source, pair.target, pair.odometry, model,
-                                                                      parameters))).*metric;
-  }
-  return sum / static_cast<double> (pairs.size ());
+  return mean (trainingScores (pairs, model, metric));
 }
+
+/** The standard error of the mean of the differences a[k] − b[k] (0 for one pair). */
+double
+pairedStandardError (const std::vector<double>& a, const std::vector<double>& b)
+{
+  const std::size_t n = a.size ();
+  if (n < 2)
+    return 0.0;
+  std::vector<double> differences (n);
+  for (std::size_t k = 0; k < n; ++k)
+    differences[k] = a[k] - b[k];
+  const double average = mean (differences);
+  double squares = 0.0;
+  for (double d : differences)
+    squares += (d - average) * (d - average);
+  return std::sqrt (squares / static_cast<double> (n - 1) / static_cast<double> (n));
+}
+
+}  // namespace
 
 int
 selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<int>& grid)
 {
   if (grid.empty ())
     throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] the grid is empty");
-  int best = grid.front ();
-  double best_score = -1.0;
-  for (int candidate : grid) {
-    if (candidate < 1)
+  if (pairs.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] no pairs to score");
+  std::vector<std::vector<double>> scores;
+  std::size_t best = 0;
+  for (std::size_t g = 0; g < grid.size (); ++g) {
+    if (grid[g] < 1)
       throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] grid values must be >= 1");
-    model.min_cluster_points = candidate;
-    const double score = meanTrainingScore (pairs, model, &PairScores::v_measure);
-    if (score > best_score + 1e-9) {  // ties: the smaller (earlier) value
-      best_score = score;
-      best = candidate;
-    }
+    model.min_cluster_points = grid[g];
+    scores.push_back (trainingScores (pairs, model, &PairScores::v_measure));
+    if (mean (scores[g]) > mean (scores[best]) + 1e-9)
+      best = g;
   }
-  return best;
+  // The one-standard-error rule (Breiman et al., 1984): the least pruning whose mean V
+  // is within one standard error of the best, that error taken over the per-pair
+  // differences from the best (V of a pair jumps with one small object).
+  int chosen = grid[best];
+  for (std::size_t g = 0; g < grid.size (); ++g)
+    if (grid[g] < chosen &&
+        mean (scores[best]) - mean (scores[g]) <= pairedStandardError (scores[best], scores[g]) + 1e-9)
+      chosen = grid[g];
+  return chosen;
 }
 
 double

@@ -88,6 +88,8 @@ validateParameters (const JointParameters& p)
     bad ("max_average_neff must be > 1");
   if (p.segment_min_points_seen_through < 1)
     bad ("segment_min_points_seen_through must be >= 1");
+  if (!(p.part_gap > 0.0) || !std::isfinite (p.part_gap))
+    bad ("part_gap must be a distance > 0 m");
   matching::describesBeams (p.sensor);  // throws for a sensor that describes no beams sensibly
   validateLadderOptions (p.inference);
   clustering::validateParameters (p.initial_clustering);

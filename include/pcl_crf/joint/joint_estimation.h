@@ -133,7 +133,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  segments the static motion slides along themselves whose end the target saw
  *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
  *  do points that moved out of where the static motion puts them, paired with points
- *  that moved in (separatePointsTheTargetSeesThrough ()).
+ *  that moved in (separatePointsTheTargetSeesThrough ()); last, a moving cluster whose
+ *  points lie in parts far apart becomes one cluster per part (separateDistantParts ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -316,6 +317,25 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
  *  and the sensor's motion. */
 Prediction
 toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
+
+/** \brief Splits every moving cluster whose points lie in parts more than \a gap apart
+ *  into one cluster per part, each with the cluster's motion: objects that happen to
+ *  move alike (cars in one lane at one speed, a cyclist beside a bus) are still
+ *  separate objects, and a rigid motion alone cannot tell them apart.
+ *
+ *  The parts are the connected components of the cluster's source points, two points
+ *  joined when they lie no farther apart than \a gap (single linkage, as
+ *  pcl::EuclideanClusterExtraction). The static world stays whole, however far apart its
+ *  surfaces; outliers and matches are untouched. Clusters are renumbered largest first.
+ *  \param[in] source source scan [m, source frame]
+ *  \param[in] gap the largest distance between neighbouring points of one object [m]
+ *  (JointParameters::part_gap)
+ *  \param[in,out] result a joint result over \a source
+ *  \return the number of clusters added (0 without a static world)
+ *  \throws std::invalid_argument for a gap that is not a distance > 0, or when the
+ *  result's sizes disagree with each other or with \a source. */
+int
+separateDistantParts (const Eigen::Matrix2Xd& source, double gap, JointResult& result);
 
 }  // namespace joint
 }  // namespace pcl_crf

@@ -52,6 +52,14 @@ struct JointParameters
   /** the fewest points of a segment the target must see through under the static
    *  motion before a shift of it is sought (one point alone may be range noise). */
   int segment_min_points_seen_through = 2;
+  /** true (default): a moving cluster whose points lie in parts more than part_gap
+   *  apart becomes one cluster per part, each with its motion (separateDistantParts ()). */
+  bool separate_distant_parts = true;
+  /** the largest distance between neighbouring points of one object [m], > 0; default 2:
+   *  wider than the gaps a thin occluder or grazing incidence leaves in a vehicle's
+   *  outline at these resolutions (about 1 m at 15 m, 1° per beam, 10° incidence),
+   *  narrower than the space between vehicles in traffic. */
+  double part_gap = 2.0;
   /** the laser that took both scans (SensorInfo: its beams), when known. When its beams
    *  go all round, the free-space steps above take the whole circle for its field of
    *  view, so that a sector of a 360° scan without returns is not taken for the
