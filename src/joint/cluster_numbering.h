@@ -17,13 +17,21 @@ void
 numberLargestFirst (JointResult& result);
 
 /** \throws std::invalid_argument, naming \a function, when the result's matches and
- *  clusters are not one per source point, a match is not a point of \a target or a
- *  cluster (or the static one) is not one of the result's. */
+ *  clusters are not as many, or a cluster (or the static one) is not one of the result's. */
+void
+checkResultClusters (const char* function, const JointResult& result);
+
+/** checkResultClusters (), and \throws std::invalid_argument, naming \a function, when
+ *  the result has not one cluster per point of \a source. */
+void
+checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& source, const JointResult& result);
+
+/** checkResultClusters (), and \throws std::invalid_argument, naming \a function, when a
+ *  match is not a point of \a target. */
 void
 checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
 
-/** checkResultAgainstTarget (), and \throws std::invalid_argument, naming \a function, when
- *  the result has not one cluster per point of \a source. */
+/** checkResultAgainstSource () and checkResultAgainstTarget (). */
 void
 checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                          const JointResult& result);

@@ -12,33 +12,6 @@ namespace joint {
 
 namespace {
 
-[[noreturn]] void
-fail (const std::string& what)
-{
-  throw std::invalid_argument ("[pcl_crf::joint::separateDistantParts] " + what);
-}
-
-/** \throws std::invalid_argument unless \a result has one cluster and one match per point
- *  of \a source, every cluster one of its motions (or kOutlierCluster), and a static
- *  cluster among them (or −1). */
-void
-checkClusters (const Eigen::Matrix2Xd& source, const JointResult& result)
-{
-  const auto n = static_cast<std::size_t> (source.cols ());
-  if (result.source_cluster.size () != n || result.source_match.size () != n)
-    fail (std::to_string (n) + " source points, " + std::to_string (result.source_cluster.size ()) + " clusters and " +
-          std::to_string (result.source_match.size ()) + " matches: give one of each per point");
-  const int clusters = static_cast<int> (result.cluster_motions.size ());
-  if (result.static_cluster < -1 || result.static_cluster >= clusters)
-    fail ("the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
-          std::to_string (clusters) + " clusters");
-  for (std::size_t i = 0; i < n; ++i) {
-    const int l = result.source_cluster[i];
-    if (l != kOutlierCluster && (l < 0 || l >= clusters))
-      fail ("point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " + std::to_string (clusters));
-  }
-}
-
 /** The parts of \a points (indices into \a source): the connected components of the
  *  graph joining two points no farther apart than \a gap (single linkage), each in
  *  increasing index order, the part of the first point first. */
@@ -77,8 +50,9 @@ int
 separateDistantParts (const Eigen::Matrix2Xd& source, double gap, JointResult& result)
 {
   if (!(gap > 0.0) || !std::isfinite (gap))
-    fail ("the gap must be a distance > 0 m, not " + std::to_string (gap));
-  checkClusters (source, result);
+    throw std::invalid_argument ("[pcl_crf::joint::separateDistantParts] the gap must be a distance > 0 m, not " +
+                                 std::to_string (gap));
+  detail::checkResultAgainstSource ("separateDistantParts", source, result);
   if (result.static_cluster < 0)  // no static world to tell the moving clusters by
     return 0;
   const int clusters = static_cast<int> (result.cluster_motions.size ());

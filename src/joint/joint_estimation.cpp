@@ -27,6 +27,25 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::joint::estimateJoint] " + what);
 }
 
+[[noreturn]] void
+failIn (const char* function, const std::string& what)
+{
+  throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
+}
+
+/** \throws std::invalid_argument, naming \a function, when a match of \a result is not a
+ *  point of \a target. */
+void
+checkMatches (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  for (std::size_t i = 0; i < result.source_match.size (); ++i) {
+    const int j = result.source_match[i];
+    if (j != kNoMatch && (j < 0 || j >= target.cols ()))
+      failIn (function, "point " + std::to_string (i) + " is matched to target point " + std::to_string (j) + " of " +
+                            std::to_string (target.cols ()));
+  }
+}
+
 /** The clusters worth keeping after a round: not ambiguous (Tipaldi & Ramos eq. 8 on
  *  the local evidence of the points they hold) and not vacuous. Points of a
  *  removed cluster move to their best kept one. \return true when one was removed. */
@@ -252,38 +271,46 @@ detail::numberLargestFirst (JointResult& result)
 }
 
 void
-detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
+detail::checkResultClusters (const char* function, const JointResult& result)
 {
-  const auto fail = [function] (const std::string& what) {
-    throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
-  };
   const std::size_t n = result.source_cluster.size ();
   if (result.source_match.size () != n)
-    fail (std::to_string (n) + " clusters but " + std::to_string (result.source_match.size ()) +
-          " matches: give one of each per source point");
+    failIn (function, std::to_string (n) + " clusters but " + std::to_string (result.source_match.size ()) +
+                          " matches: give one of each per source point");
   const int clusters = static_cast<int> (result.cluster_motions.size ());
   if (result.static_cluster >= clusters)
-    fail ("the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
-          std::to_string (clusters) + " clusters");
+    failIn (function, "the static cluster " + std::to_string (result.static_cluster) + " is not one of the " +
+                          std::to_string (clusters) + " clusters");
   for (std::size_t i = 0; i < n; ++i) {
-    const int l = result.source_cluster[i], j = result.source_match[i];
+    const int l = result.source_cluster[i];
     if (l != kOutlierCluster && (l < 0 || l >= clusters))
-      fail ("point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " + std::to_string (clusters));
-    if (j != kNoMatch && (j < 0 || j >= target.cols ()))
-      fail ("point " + std::to_string (i) + " is matched to target point " + std::to_string (j) + " of " +
-            std::to_string (target.cols ()));
+      failIn (function, "point " + std::to_string (i) + " is in cluster " + std::to_string (l) + " of " +
+                            std::to_string (clusters));
   }
+}
+
+void
+detail::checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& source, const JointResult& result)
+{
+  checkResultClusters (function, result);
+  if (static_cast<Eigen::Index> (result.source_cluster.size ()) != source.cols ())
+    failIn (function, std::to_string (source.cols ()) + " source points but " +
+                          std::to_string (result.source_cluster.size ()) + " clusters: give one per point");
+}
+
+void
+detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  checkResultClusters (function, result);
+  checkMatches (function, target, result);
 }
 
 void
 detail::checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                  const JointResult& result)
 {
-  checkResultAgainstTarget (function, target, result);
-  if (static_cast<Eigen::Index> (result.source_cluster.size ()) != source.cols ())
-    throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + std::to_string (source.cols ()) +
-                                 " source points but " + std::to_string (result.source_cluster.size ()) +
-                                 " clusters: give one per point");
+  checkResultAgainstSource (function, source, result);
+  checkMatches (function, target, result);
 }
 
 void

@@ -145,13 +145,15 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
   if (pairs.empty ())
     throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] no pairs to score");
   std::vector<std::vector<double>> scores;
+  std::vector<double> means;
   std::size_t best = 0;
   for (std::size_t g = 0; g < grid.size (); ++g) {
     if (grid[g] < 1)
       throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] grid values must be >= 1");
     model.min_cluster_points = grid[g];
     scores.push_back (trainingScores (pairs, model, &PairScores::v_measure));
-    if (mean (scores[g]) > mean (scores[best]) + 1e-9)
+    means.push_back (mean (scores[g]));
+    if (means[g] > means[best] + 1e-9)
       best = g;
   }
   // The one-standard-error rule (Breiman et al., 1984): the least pruning whose mean V
@@ -160,7 +162,7 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
   int chosen = grid[best];
   for (std::size_t g = 0; g < grid.size (); ++g)
     if (grid[g] < chosen &&
-        mean (scores[best]) - mean (scores[g]) <= pairedStandardError (scores[best], scores[g]) + 1e-9)
+        means[best] - means[g] <= pairedStandardError (scores[best], scores[g]) + 1e-9)
       chosen = grid[g];
   return chosen;
 }

@@ -1,8 +1,8 @@
 #pragma once
 
 #include <pcl_crf/clustering/clustering_model.h>
-#include <pcl_crf/core/scan_pair.h>
 #include <pcl_crf/clustering/crf_clustering.h>
+#include <pcl_crf/core/scan_pair.h>
 #include <pcl_crf/joint/joint_features.h>
 #include <pcl_crf/joint/ladder_inference.h>
 #include <pcl_crf/matching/matching_model.h>
