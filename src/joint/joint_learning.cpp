@@ -5,10 +5,14 @@
 #include <pcl_crf/matching/matching_learner.h>
 #include <pcl_crf/metrics/pair_scores.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace pcl_crf {
 namespace joint {
@@ -112,12 +116,6 @@ mean (const std::vector<double>& values)
   return std::accumulate (values.begin (), values.end (), 0.0) / static_cast<double> (values.size ());
 }
 
-double
-meanTrainingScore (const std::vector<ScanPair>& pairs, const JointModel& model, double PairScores::*metric)
-{
-  return mean (trainingScores (pairs, model, metric));
-}
-
 /** The standard error of the mean of the differences a[k] − b[k] (0 for one pair). */
 double
 pairedStandardError (const std::vector<double>& a, const std::vector<double>& b)
@@ -137,6 +135,39 @@ pairedStandardError (const std::vector<double>& a, const std::vector<double>& b)
 
 }  // namespace
 
+std::size_t
+selectWithinOneStandardError (const std::vector<std::vector<double>>& scores, const std::vector<std::size_t>& preference)
+{
+  if (scores.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectWithinOneStandardError] no candidates");
+  if (preference.size () != scores.size ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectWithinOneStandardError] " +
+                                 std::to_string (scores.size ()) + " candidates but a preference order of " +
+                                 std::to_string (preference.size ()));
+  std::vector<bool> ranked (scores.size (), false);
+  for (std::size_t c : preference) {
+    if (c >= scores.size () || ranked[c])
+      throw std::invalid_argument ("[pcl_crf::joint::selectWithinOneStandardError] the preference order must list "
+                                   "every candidate once");
+    ranked[c] = true;
+  }
+  for (const std::vector<double>& s : scores)
+    if (s.empty () || s.size () != scores.front ().size ())
+      throw std::invalid_argument ("[pcl_crf::joint::selectWithinOneStandardError] every candidate needs a score "
+                                   "on the same, non-empty set of pairs");
+  std::vector<double> means;
+  std::size_t best = 0;
+  for (std::size_t c = 0; c < scores.size (); ++c) {
+    means.push_back (mean (scores[c]));
+    if (means[c] > means[best] + 1e-9)
+      best = c;
+  }
+  for (std::size_t c : preference)  // the first in the preference order within one standard error
+    if (means[best] - means[c] <= pairedStandardError (scores[best], scores[c]) + 1e-9)
+      return c;
+  return best;  // not reached: best itself is within
+}
+
 int
 selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<int>& grid)
 {
@@ -145,44 +176,71 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
   if (pairs.empty ())
     throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] no pairs to score");
   std::vector<std::vector<double>> scores;
-  std::vector<double> means;
-  std::size_t best = 0;
-  for (std::size_t g = 0; g < grid.size (); ++g) {
-    if (grid[g] < 1)
+  for (const int value : grid) {
+    if (value < 1)
       throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] grid values must be >= 1");
-    model.min_cluster_points = grid[g];
+    model.min_cluster_points = value;
     scores.push_back (trainingScores (pairs, model, &PairScores::v_measure));
-    means.push_back (mean (scores[g]));
-    if (means[g] > means[best] + 1e-9)
-      best = g;
   }
-  // The one-standard-error rule (Breiman et al., 1984): the least pruning whose mean V
-  // is within one standard error of the best, that error taken over the per-pair
-  // differences from the best (V of a pair jumps with one small object).
-  int chosen = grid[best];
-  for (std::size_t g = 0; g < grid.size (); ++g)
-    if (grid[g] < chosen &&
-        means[best] - means[g] <= pairedStandardError (scores[best], scores[g]) + 1e-9)
-      chosen = grid[g];
-  return chosen;
+  // The least pruning within one standard error of the best (V of a pair jumps with one small object).
+  std::vector<std::size_t> smallest_first (grid.size ());
+  std::iota (smallest_first.begin (), smallest_first.end (), std::size_t (0));
+  std::stable_sort (smallest_first.begin (), smallest_first.end (),
+                    [&grid] (std::size_t a, std::size_t b) { return grid[a] < grid[b]; });
+  return grid[selectWithinOneStandardError (scores, smallest_first)];
 }
+
+namespace {
+
+/** The outlier bias offset chosen and the per-pair training association accuracy it gives. */
+struct OutlierBiasCalibration
+{
+  double offset = 0.0;
+  std::vector<double> association;
+};
+
+/** selectOutlierBiasOffset () with the scores of its choice. */
+OutlierBiasCalibration
+calibrateOutlierBias (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid)
+{
+  if (grid.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] the grid is empty");
+  if (pairs.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] no pairs to score");
+  const double learned = model.weights (matching::kOutlierBias);
+  OutlierBiasCalibration best;
+  double best_score = -1.0;
+  for (double offset : grid) {
+    model.weights (matching::kOutlierBias) = learned + offset;
+    std::vector<double> association = trainingScores (pairs, model, &PairScores::association_accuracy);
+    const double score = mean (association);
+    if (score > best_score + 1e-9) {  // ties: the earlier value
+      best_score = score;
+      best.offset = offset;
+      best.association = std::move (association);
+    }
+  }
+  return best;
+}
+
+/** The node conditionals of every pair of \a pairs (jointNodeConditionals ()). */
+std::vector<crf::NodeConditional>
+jointTrainingNodes (const std::vector<ScanPair>& pairs, const JointModel& model)
+{
+  std::vector<crf::NodeConditional> nodes;
+  for (const ScanPair& pair : pairs) {
+    std::vector<crf::NodeConditional> more = jointNodeConditionals (pair, model);
+    nodes.insert (nodes.end (), std::make_move_iterator (more.begin ()), std::make_move_iterator (more.end ()));
+  }
+  return nodes;
+}
+
+}  // namespace
 
 double
 selectOutlierBiasOffset (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid)
 {
-  if (grid.empty ())
-    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] the grid is empty");
-  const double learned = model.weights (matching::kOutlierBias);
-  double best = grid.front (), best_score = -1.0;
-  for (double offset : grid) {
-    model.weights (matching::kOutlierBias) = learned + offset;
-    const double score = meanTrainingScore (pairs, model, &PairScores::association_accuracy);
-    if (score > best_score + 1e-9) {  // ties: the earlier value
-      best_score = score;
-      best = offset;
-    }
-  }
-  return best;
+  return calibrateOutlierBias (pairs, std::move (model), grid).offset;
 }
 
 std::vector<crf::NodeConditional>
@@ -214,12 +272,39 @@ Eigen::VectorXd
 learnJointWeights (const std::vector<ScanPair>& pairs, const JointModel& model, double prior_sigma,
                    const crf::LbfgsOptions& lbfgs)
 {
-  std::vector<crf::NodeConditional> nodes;
-  for (const ScanPair& pair : pairs) {
-    std::vector<crf::NodeConditional> more = jointNodeConditionals (pair, model);
-    nodes.insert (nodes.end (), std::make_move_iterator (more.begin ()), std::make_move_iterator (more.end ()));
+  return crf::learnNodePseudoLikelihood (jointTrainingNodes (pairs, model), prior_sigma, lbfgs).x;
+}
+
+double
+learnJointWeightsAndPrior (const std::vector<ScanPair>& pairs, const JointLearningOptions& options, JointModel& model)
+{
+  if (pairs.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::learnJointWeightsAndPrior] no training pair");
+  if (options.prior_sigma_grid.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::learnJointWeightsAndPrior] the prior_sigma grid is empty");
+  for (double sigma : options.prior_sigma_grid)
+    if (!(sigma > 0.0))
+      throw std::invalid_argument ("[pcl_crf::joint::learnJointWeightsAndPrior] every prior sigma must be > 0, got " +
+                                   std::to_string (sigma));
+  const std::vector<crf::NodeConditional> nodes = jointTrainingNodes (pairs, model);  // the same under every prior
+  const std::vector<double>& grid = options.prior_sigma_grid;
+  std::vector<Eigen::VectorXd> weights;
+  std::vector<std::vector<double>> association;
+  for (double sigma : grid) {
+    model.weights = crf::learnNodePseudoLikelihood (nodes, sigma, options.lbfgs).x;
+    OutlierBiasCalibration bias = calibrateOutlierBias (pairs, model, options.outlier_bias_offset_grid);
+    model.weights (matching::kOutlierBias) += bias.offset;
+    weights.push_back (model.weights);
+    association.push_back (std::move (bias.association));
   }
-  return crf::learnNodePseudoLikelihood (nodes, prior_sigma, lbfgs).x;
+  std::vector<std::size_t> weakest_first (grid.size ());
+  std::iota (weakest_first.begin (), weakest_first.end (), std::size_t (0));
+  std::stable_sort (weakest_first.begin (), weakest_first.end (),
+                    [&grid] (std::size_t a, std::size_t b) { return grid[a] > grid[b]; });
+  const std::size_t chosen = selectWithinOneStandardError (association, weakest_first);
+  model.weights = weights[chosen];
+  model.prior_sigma = grid[chosen];
+  return mean (association[chosen]);
 }
 
 JointModel
@@ -227,8 +312,6 @@ trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions&
 {
   if (pairs.empty ())
     throw std::invalid_argument ("[pcl_crf::joint::trainJointModel] no training pair");
-  if (!(options.prior_sigma > 0.0))
-    throw std::invalid_argument ("[pcl_crf::joint::trainJointModel] prior_sigma must be > 0");
   JointModel model;
   model.matcher = matching::trainCrfMatching (pairs, options.matching);
   std::vector<std::vector<int>> associations;  // what the initial clustering will see: pass 1's
@@ -242,9 +325,7 @@ trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions&
   model.initial_clustering.weights = selection.weights;
   model.initial_clustering.prior_sigma = selection.prior_sigma;
   model.initial_clustering.features = options.clustering.features;
-  model.prior_sigma = options.prior_sigma;
-  model.weights = learnJointWeights (pairs, model, options.prior_sigma, options.lbfgs);
-  model.weights (matching::kOutlierBias) += selectOutlierBiasOffset (pairs, model, options.outlier_bias_offset_grid);
+  learnJointWeightsAndPrior (pairs, options, model);
   model.min_cluster_points = selectMinClusterPoints (pairs, model, options.min_cluster_points_grid);
   return model;
 }
