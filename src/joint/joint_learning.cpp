@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -133,6 +134,18 @@ pairedStandardError (const std::vector<double>& a, const std::vector<double>& b)
   return std::sqrt (squares / static_cast<double> (n - 1) / static_cast<double> (n));
 }
 
+/** The indices of \a values ordered by \a before on their values (stable: ties keep their order). */
+template <typename T, typename Before>
+std::vector<std::size_t>
+indicesInOrder (const std::vector<T>& values, Before before)
+{
+  std::vector<std::size_t> order (values.size ());
+  std::iota (order.begin (), order.end (), std::size_t (0));
+  std::stable_sort (order.begin (), order.end (),
+                    [&values, &before] (std::size_t a, std::size_t b) { return before (values[a], values[b]); });
+  return order;
+}
+
 }  // namespace
 
 std::size_t
@@ -183,11 +196,7 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
     scores.push_back (trainingScores (pairs, model, &PairScores::v_measure));
   }
   // The least pruning within one standard error of the best (V of a pair jumps with one small object).
-  std::vector<std::size_t> smallest_first (grid.size ());
-  std::iota (smallest_first.begin (), smallest_first.end (), std::size_t (0));
-  std::stable_sort (smallest_first.begin (), smallest_first.end (),
-                    [&grid] (std::size_t a, std::size_t b) { return grid[a] < grid[b]; });
-  return grid[selectWithinOneStandardError (scores, smallest_first)];
+  return grid[selectWithinOneStandardError (scores, indicesInOrder (grid, std::less<int> ()))];
 }
 
 namespace {
@@ -297,11 +306,8 @@ learnJointWeightsAndPrior (const std::vector<ScanPair>& pairs, const JointLearni
     weights.push_back (model.weights);
     association.push_back (std::move (bias.association));
   }
-  std::vector<std::size_t> weakest_first (grid.size ());
-  std::iota (weakest_first.begin (), weakest_first.end (), std::size_t (0));
-  std::stable_sort (weakest_first.begin (), weakest_first.end (),
-                    [&grid] (std::size_t a, std::size_t b) { return grid[a] > grid[b]; });
-  const std::size_t chosen = selectWithinOneStandardError (association, weakest_first);
+  const std::size_t chosen =
+      selectWithinOneStandardError (association, indicesInOrder (grid, std::greater<double> ()));  // weakest first
   model.weights = weights[chosen];
   model.prior_sigma = grid[chosen];
   return mean (association[chosen]);
