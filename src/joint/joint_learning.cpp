@@ -146,6 +146,49 @@ indicesInOrder (const std::vector<T>& values, Before before)
   return order;
 }
 
+/** The outlier bias offset chosen and the per-pair training association accuracy it gives. */
+struct OutlierBiasCalibration
+{
+  double offset = 0.0;
+  std::vector<double> association;
+};
+
+/** selectOutlierBiasOffset () with the scores of its choice. */
+OutlierBiasCalibration
+calibrateOutlierBias (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid)
+{
+  if (grid.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] the grid is empty");
+  if (pairs.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] no pairs to score");
+  const double learned = model.weights (matching::kOutlierBias);
+  OutlierBiasCalibration best;
+  double best_score = -1.0;
+  for (double offset : grid) {
+    model.weights (matching::kOutlierBias) = learned + offset;
+    std::vector<double> association = trainingScores (pairs, model, &PairScores::association_accuracy);
+    const double score = mean (association);
+    if (score > best_score + 1e-9) {  // ties: the earlier value
+      best_score = score;
+      best.offset = offset;
+      best.association = std::move (association);
+    }
+  }
+  return best;
+}
+
+/** The node conditionals of every pair of \a pairs (jointNodeConditionals ()). */
+std::vector<crf::NodeConditional>
+jointTrainingNodes (const std::vector<ScanPair>& pairs, const JointModel& model)
+{
+  std::vector<crf::NodeConditional> nodes;
+  for (const ScanPair& pair : pairs) {
+    std::vector<crf::NodeConditional> more = jointNodeConditionals (pair, model);
+    nodes.insert (nodes.end (), std::make_move_iterator (more.begin ()), std::make_move_iterator (more.end ()));
+  }
+  return nodes;
+}
+
 }  // namespace
 
 std::size_t
@@ -199,53 +242,6 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
   return grid[selectWithinOneStandardError (scores, indicesInOrder (grid, std::less<int> ()))];
 }
 
-namespace {
-
-/** The outlier bias offset chosen and the per-pair training association accuracy it gives. */
-struct OutlierBiasCalibration
-{
-  double offset = 0.0;
-  std::vector<double> association;
-};
-
-/** selectOutlierBiasOffset () with the scores of its choice. */
-OutlierBiasCalibration
-calibrateOutlierBias (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid)
-{
-  if (grid.empty ())
-    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] the grid is empty");
-  if (pairs.empty ())
-    throw std::invalid_argument ("[pcl_crf::joint::selectOutlierBiasOffset] no pairs to score");
-  const double learned = model.weights (matching::kOutlierBias);
-  OutlierBiasCalibration best;
-  double best_score = -1.0;
-  for (double offset : grid) {
-    model.weights (matching::kOutlierBias) = learned + offset;
-    std::vector<double> association = trainingScores (pairs, model, &PairScores::association_accuracy);
-    const double score = mean (association);
-    if (score > best_score + 1e-9) {  // ties: the earlier value
-      best_score = score;
-      best.offset = offset;
-      best.association = std::move (association);
-    }
-  }
-  return best;
-}
-
-/** The node conditionals of every pair of \a pairs (jointNodeConditionals ()). */
-std::vector<crf::NodeConditional>
-jointTrainingNodes (const std::vector<ScanPair>& pairs, const JointModel& model)
-{
-  std::vector<crf::NodeConditional> nodes;
-  for (const ScanPair& pair : pairs) {
-    std::vector<crf::NodeConditional> more = jointNodeConditionals (pair, model);
-    nodes.insert (nodes.end (), std::make_move_iterator (more.begin ()), std::make_move_iterator (more.end ()));
-  }
-  return nodes;
-}
-
-}  // namespace
-
 double
 selectOutlierBiasOffset (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid)
 {
@@ -297,13 +293,14 @@ learnJointWeightsAndPrior (const std::vector<ScanPair>& pairs, const JointLearni
                                    std::to_string (sigma));
   const std::vector<crf::NodeConditional> nodes = jointTrainingNodes (pairs, model);  // the same under every prior
   const std::vector<double>& grid = options.prior_sigma_grid;
+  JointModel candidate = model;  // \a model changes only once every prior is learned
   std::vector<Eigen::VectorXd> weights;
   std::vector<std::vector<double>> association;
   for (double sigma : grid) {
-    model.weights = crf::learnNodePseudoLikelihood (nodes, sigma, options.lbfgs).x;
-    OutlierBiasCalibration bias = calibrateOutlierBias (pairs, model, options.outlier_bias_offset_grid);
-    model.weights (matching::kOutlierBias) += bias.offset;
-    weights.push_back (model.weights);
+    candidate.weights = crf::learnNodePseudoLikelihood (nodes, sigma, options.lbfgs).x;
+    OutlierBiasCalibration bias = calibrateOutlierBias (pairs, candidate, options.outlier_bias_offset_grid);
+    candidate.weights (matching::kOutlierBias) += bias.offset;
+    weights.push_back (candidate.weights);
     association.push_back (std::move (bias.association));
   }
   const std::size_t chosen =
