@@ -46,7 +46,8 @@ const std::vector<matching::ScanSegment>&
 ScanViews::segments (std::optional<std::vector<matching::ScanSegment>>& cache, const Eigen::Matrix2Xd& scan) const
 {
   if (!cache)
-    cache = matching::segmentScan (scan, parameters_.breakpoint_angle, parameters_.range_noise);
+    cache = matching::segmentScan (scan, parameters_.breakpoint_angle, parameters_.range_noise,
+                                   matching::BeamGaps::MissingReturns);
   return *cache;
 }
 

@@ -53,7 +53,9 @@ public:
     return parameters_;
   }
 
-  /** matching::segmentScan () of each scan with the parameters' breakpoint settings. */
+  /** matching::segmentScan () of each scan with the parameters' breakpoint settings,
+   *  split across missing returns (matching::BeamGaps::MissingReturns): the steps read
+   *  segments as the outlines of what each sensor saw. */
   const std::vector<matching::ScanSegment>&
   sourceSegments () const;
 

@@ -2,29 +2,53 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace pcl_crf {
 namespace matching {
 
 namespace {
 
-/** |bearing(q) − bearing(p)| wrapped to [0, π]. */
+/** |b − a| for bearings a, b, wrapped to [0, π]. */
 double
-bearingStep (const Eigen::Vector2d& p, const Eigen::Vector2d& q)
+bearingStep (double a, double b)
 {
-  const double d = std::abs (std::atan2 (q.y (), q.x ()) - std::atan2 (p.y (), p.x ()));
+  const double d = std::abs (b - a);
   return d > M_PI ? 2.0 * M_PI - d : d;
 }
 
-/** Adaptive breakpoint test between consecutive points p, q (Borges & Aldon, 2004). */
-bool
-isBreakpoint (const Eigen::Vector2d& p, const Eigen::Vector2d& q, double breakpoint_angle, double range_noise)
+/** The sensor's angular step as the scan shows it: the median bearing step between
+ *  consecutive points (0 with fewer than two). */
+double
+typicalStep (const std::vector<double>& bearings)
 {
-  const double dphi = bearingStep (p, q);
+  if (bearings.size () < 2)
+    return 0.0;
+  std::vector<double> steps (bearings.size () - 1);
+  for (std::size_t k = 0; k + 1 < bearings.size (); ++k)
+    steps[k] = bearingStep (bearings[k], bearings[k + 1]);
+  const auto middle = steps.begin () + static_cast<std::ptrdiff_t> (steps.size () / 2);
+  std::nth_element (steps.begin (), middle, steps.end ());
+  return *middle;
+}
+
+/** Adaptive breakpoint test between consecutive points p, q, \a dphi apart in bearing
+ *  (Borges & Aldon, 2004): ||q − p|| > k r sin Δφ / sin(λ − Δφ) + 3σ. Δφ = dphi and
+ *  k = 1, unless the gap spans missing returns (\a step > 0, the sensor's step, and
+ *  dphi > 1.5 steps): then Δφ = step and k = dphi / step, one step's distance per beam. */
+bool
+isBreakpoint (const Eigen::Vector2d& p, const Eigen::Vector2d& q, double dphi, double step, double breakpoint_angle,
+              double range_noise)
+{
   if (dphi >= breakpoint_angle)
     return true;
   const double range = std::min (p.norm (), q.norm ());
-  const double threshold = range * std::sin (dphi) / std::sin (breakpoint_angle - dphi) + 3.0 * range_noise;
+  const bool missing_returns = step > 0.0 && step < breakpoint_angle && dphi > 1.5 * step;
+  const double one_step = missing_returns ? step : dphi;
+  const double steps = missing_returns ? dphi / step : 1.0;
+  const double threshold =
+      steps * range * std::sin (one_step) / std::sin (breakpoint_angle - one_step) + 3.0 * range_noise;
   return (q - p).norm () > threshold;
 }
 
@@ -38,13 +62,18 @@ isObjectEnd (const Eigen::Matrix2Xd& scan, int end, int across)
 }  // namespace
 
 std::vector<ScanSegment>
-segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise)
+segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise, BeamGaps gaps)
 {
   std::vector<ScanSegment> segments;
   const int n = static_cast<int> (points.cols ());
+  std::vector<double> bearings (static_cast<std::size_t> (n));
+  for (int i = 0; i < n; ++i)
+    bearings[i] = std::atan2 (points (1, i), points (0, i));
+  const double step = gaps == BeamGaps::MissingReturns ? typicalStep (bearings) : 0.0;
   int begin = 0;
   for (int i = 1; i <= n; ++i)
-    if (i == n || isBreakpoint (points.col (i - 1), points.col (i), breakpoint_angle, range_noise)) {
+    if (i == n || isBreakpoint (points.col (i - 1), points.col (i), bearingStep (bearings[i - 1], bearings[i]), step,
+                                breakpoint_angle, range_noise)) {
       segments.push_back ({begin, i});
       begin = i;
     }

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -226,6 +227,64 @@ TEST (MatchingSegments, BreakpointsSeparateTheBoxFromTheWall)
   for (const auto& s : segments)
     covered += s.size ();
   EXPECT_EQ (covered, scene.source.cols ());
+}
+
+/** Points at \a range [m] on the bearings from \a first to \a last [deg], a degree apart. */
+std::vector<Eigen::Vector2d>
+arcPoints (double range, int first, int last)
+{
+  std::vector<Eigen::Vector2d> points;
+  for (int degrees = first; degrees <= last; ++degrees)
+    points.emplace_back (range * std::cos (degrees * M_PI / 180.0), range * std::sin (degrees * M_PI / 180.0));
+  return points;
+}
+
+Eigen::Matrix2Xd
+asColumns (const std::vector<Eigen::Vector2d>& points)
+{
+  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k)
+    scan.col (static_cast<Eigen::Index> (k)) = points[k];
+  return scan;
+}
+
+TEST (MatchingSegments, MissingReturnsDoNotJoinANearObjectToTheWallBehindIt)
+{
+  // The overtakes bag's case: a 1/10-scale car 0.42 m away on bearings 40°–72°, no
+  // return on 73°–80°, a wall 3.4 m away from 81° on (one-degree beams; λ = 10°,
+  // σ = 1 cm). Across the 9° gap the points are 2.99 m apart. Measured, the bound is
+  // 0.42 sin 9° / sin 1° + 0.03 = 3.79 m: one segment. Across missing returns it is
+  // 9 × 0.42 sin 1° / sin 9° + 0.03 = 0.45 m: the car and the wall apart.
+  std::vector<Eigen::Vector2d> points = arcPoints (0.42, 40, 72);
+  const int car = static_cast<int> (points.size ());
+  for (const auto& p : arcPoints (3.4, 81, 120))
+    points.push_back (p);
+  const Eigen::Matrix2Xd scan = asColumns (points);
+  const m::SegmentMotionParameters parameters;
+  const auto measured = m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise);
+  ASSERT_EQ (measured.size (), 1u);
+  const auto split =
+      m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::MissingReturns);
+  ASSERT_EQ (split.size (), 2u);
+  EXPECT_EQ (split[0].end, car);
+  EXPECT_EQ (split[1].begin, car);
+  EXPECT_EQ (split[1].end, scan.cols ());
+}
+
+TEST (MatchingSegments, AWallWithOneMissingReturnStaysOneSegment)
+{
+  // A wall 2 m ahead (x = 2) seen on −20° … 20° without the 0° return: its points
+  // either side are 2 (tan 1° + tan 1°) = 0.070 m apart, within 2 × 2 sin 1° / sin 9° +
+  // 0.03 = 0.48 m.
+  std::vector<Eigen::Vector2d> points;
+  for (int degrees = -20; degrees <= 20; ++degrees)
+    if (degrees != 0)
+      points.emplace_back (2.0, 2.0 * std::tan (degrees * M_PI / 180.0));
+  const m::SegmentMotionParameters parameters;
+  EXPECT_EQ (m::segmentScan (asColumns (points), parameters.breakpoint_angle, parameters.range_noise,
+                             m::BeamGaps::MissingReturns)
+                 .size (),
+             1u);
 }
 
 TEST (MatchingSegments, HypothesisFollowsAMovingBox)

@@ -18,21 +18,38 @@ struct ScanSegment
   size () const { return end - begin; }
 };
 
+/** \brief What a bearing gap between consecutive points wider than the sensor's step
+ *  means to segmentScan (). */
+enum class BeamGaps
+{
+  /** Δφ is measured from the points, whatever the gap (CRF-Matching's segments, which
+   *  only propose motion hypotheses; its shipped models were trained on them). */
+  Measured,
+  /** A gap wider than 1.5 steps (the step: the median bearing step between consecutive
+   *  points) spans missing returns: the beams in it saw no surface, so each allows one
+   *  step's breakpoint distance. Measured, the bound over the whole gap grows without
+   *  limit as the gap nears λ (r sin 9° / sin 1° ≈ 9 r): a 1/10-scale car 0.4 m away
+   *  and a wall 3 m behind it, 9 one-degree beams apart, would be one segment. */
+  MissingReturns
+};
+
 /** \brief Splits a scan in beam order at the breakpoints of the adaptive
  *  breakpoint detector (Borges & Aldon, 2004): consecutive points p, q are on
  *  different segments when ||q − p|| > r sin Δφ / sin(λ − Δφ) + 3σ, with r the
- *  smaller range and Δφ their bearing difference (measured from the points, so
- *  missing beams are handled).
+ *  smaller range and Δφ their bearing difference (across missing returns, see
+ *  \a gaps), and whenever Δφ ≥ λ.
  *  \param[in] points 2 x N points in the scan's own sensor frame [m]
  *  \param[in] breakpoint_angle λ, the worst incidence angle on one surface [rad]
  *  \param[in] range_noise σ, the laser's range noise [m]
+ *  \param[in] gaps how a gap wider than the sensor's step is bridged
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (pair.source, 0.1745, 0.01);
  *  \endcode
  */
 std::vector<ScanSegment>
-segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise);
+segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise,
+             BeamGaps gaps = BeamGaps::Measured);
 
 /** \brief The index into \a segments of every one of \a points points (−1 for a point
  *  in none of them). */
