@@ -4,9 +4,20 @@
 #include <pcl_crf/core/scan_pair.h>
 
 #include <cmath>
+#include <vector>
 
 namespace pcl_crf {
 namespace test {
+
+/** \a points as the columns of a 2 x N matrix, in order. */
+inline Eigen::Matrix2Xd
+asColumns (const std::vector<Eigen::Vector2d>& points)
+{
+  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t i = 0; i < points.size (); ++i)
+    xy.col (static_cast<Eigen::Index> (i)) = points[i];
+  return xy;
+}
 
 /** Points every \a step metres along the walls of an axis-aligned room
  *  [x0, x1] x [y0, y1], counter-clockwise. */
@@ -21,10 +32,7 @@ roomOutline (double x0, double x1, double y0, double y1, double step)
     for (int k = 0; k < count; ++k)
       points.push_back (a + (b - a) * (static_cast<double> (k) / count));
   }
-  Eigen::Matrix2Xd xy (2, points.size ());
-  for (std::size_t i = 0; i < points.size (); ++i)
-    xy.col (i) = points[i];
-  return xy;
+  return asColumns (points);
 }
 
 /** A static room seen from two poses: the target is the source moved by

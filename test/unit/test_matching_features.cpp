@@ -26,6 +26,7 @@ namespace {
 namespace m = pcl_crf::matching;
 using pcl_crf::makeRigid2d;
 using pcl_crf::Rigid2d;
+using pcl_crf::test::asColumns;
 
 /** An L: four points along +x, then three up +y; point 3 is the corner (3, 0). */
 Eigen::Matrix2Xd
@@ -200,9 +201,7 @@ movingBoxScene (double scale = 1.0)
         rest.push_back (p);
     std::sort (rest.begin (), rest.end (), [&] (auto& a, auto& b) { return bearing (a) < bearing (b); });
     points.insert (points.end (), rest.begin (), rest.end ());
-    scan.resize (2, static_cast<Eigen::Index> (points.size ()));
-    for (std::size_t k = 0; k < points.size (); ++k)
-      scan.col (k) = points[k];
+    scan = asColumns (points);
   };
   assemble (0.0, scene.source, &scene.box_begin, &scene.box_end);
   int target_box_begin = 0, target_box_end = 0;
@@ -237,15 +236,6 @@ arcPoints (double range, int first, int last)
   for (int degrees = first; degrees <= last; ++degrees)
     points.emplace_back (range * std::cos (degrees * M_PI / 180.0), range * std::sin (degrees * M_PI / 180.0));
   return points;
-}
-
-Eigen::Matrix2Xd
-asColumns (const std::vector<Eigen::Vector2d>& points)
-{
-  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
-  for (std::size_t k = 0; k < points.size (); ++k)
-    scan.col (static_cast<Eigen::Index> (k)) = points[k];
-  return scan;
 }
 
 TEST (MatchingSegments, MissingReturnsDoNotJoinANearObjectToTheWallBehindIt)
