@@ -98,7 +98,8 @@ public:
 
   /** \brief Initial guess from odometry: T_target_source = T_source_target⁻¹, the
    *  odometry covariance as a prior on the estimated motion, and its interval
-   *  (setScanInterval). */
+   *  (setScanInterval). An unusable reading (odometryProblem ()) is reported with
+   *  PCL_ERROR and leaves the guess unchanged. */
   void
   setOdometry (const Odometry& odometry);
 

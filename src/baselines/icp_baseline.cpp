@@ -8,6 +8,7 @@
 #include <pcl/registration/transformation_estimation_2D.h>
 
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace {
@@ -19,6 +20,11 @@ checkOptions (const ScanPair& pair, const IcpBaselineOptions& options)
 {
   if (pair.source.cols () == 0 || pair.target.cols () == 0)
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] the source or target scan is empty");
+  if (!pair.source.allFinite () || !pair.target.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::runIcpBaseline] the scans hold NaN or infinite points");
+  const std::string problem = odometryProblem (pair.odometry);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::runIcpBaseline] " + problem);
   if (options.max_iterations <= 0 || !(options.max_correspondence_distance > 0.0) ||
       !(options.outlier_distance > 0.0) || !(options.transformation_epsilon >= 0.0))
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] iterations and distances must be positive");

@@ -38,6 +38,9 @@ selectStaticCluster (const std::vector<Rigid2d>& motions, const Odometry& odomet
   if (!sizes.empty () && sizes.size () != motions.size ())
     throw std::invalid_argument ("[pcl_crf::clustering::selectStaticCluster] " + std::to_string (sizes.size ()) +
                                  " cluster sizes for " + std::to_string (motions.size ()) + " motions");
+  const std::string problem = odometryProblem (odometry);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::clustering::selectStaticCluster] " + problem);
   const bool with_prior = std::any_of (sizes.begin (), sizes.end (), [] (int n) { return n > 0; });
   int best = -1;
   double best_score = std::numeric_limits<double>::infinity ();

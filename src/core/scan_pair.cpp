@@ -1,8 +1,36 @@
 #include <pcl_crf/core/scan_pair.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_crf {
+
+bool
+isRotation (const Rigid2d& T)
+{
+  const Eigen::Matrix2d R = T.linear ();
+  return (R.transpose () * R - Eigen::Matrix2d::Identity ()).cwiseAbs ().maxCoeff () < 1e-6 && R.determinant () > 0.0;
+}
+
+std::string
+odometryProblem (const Odometry& odometry)
+{
+  if (!odometry.T_source_target.matrix ().allFinite ())
+    return "odometry has a NaN or infinite value";
+  if (!isRotation (odometry.T_source_target))
+    return "odometry's linear part is not a rotation";
+  const Eigen::Matrix3d& C = odometry.covariance;
+  if (!C.allFinite ())
+    return "odometry covariance has a NaN or infinite value";
+  if ((C - C.transpose ()).cwiseAbs ().maxCoeff () > 1e-9 * std::max (1.0, C.cwiseAbs ().maxCoeff ()))
+    return "odometry covariance is not symmetric";
+  if ((C.diagonal ().array () < 0.0).any ())
+    return "odometry covariance has a negative variance on its diagonal";
+  if (!std::isfinite (odometry.interval) || odometry.interval < 0.0)
+    return "the interval between the scans must be a time >= 0 s (0: unknown), not " +
+           std::to_string (odometry.interval);
+  return {};
+}
 
 int
 ScanPair::objectIndex (int id) const

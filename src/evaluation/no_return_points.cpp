@@ -112,6 +112,9 @@ public:
   Prediction
   predict (const ScanPair& pair) override
   {
+    const std::string problem = odometryProblem (pair.odometry);
+    if (!problem.empty ())
+      throw std::invalid_argument ("pair '" + pair.name + "': " + problem);
     if (!holdsNoReturnPoint (pair))
       return method_->predict (pair);  // the usual case: no copy of the pair
     const PairReturns returns = checkedReturns (pair);

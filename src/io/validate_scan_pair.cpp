@@ -40,18 +40,11 @@ checkSensor (const SensorInfo& sensor, const std::string& where)
 void
 checkOdometry (const Odometry& odometry, const std::string& where)
 {
-  if (!odometry.T_source_target.matrix ().allFinite ())
-    fail (where, "odometry has a NaN or infinite value");
-  const Eigen::Matrix3d& C = odometry.covariance;
-  if (!C.allFinite ())
-    fail (where, "odometry covariance has a NaN or infinite value");
-  if (!C.isApprox (C.transpose (), 1e-9) && (C - C.transpose ()).cwiseAbs ().maxCoeff () > 1e-12)
-    fail (where, "odometry covariance is not symmetric");
-  if ((C.diagonal ().array () <= 0.0).any ())
+  const std::string problem = odometryProblem (odometry);
+  if (!problem.empty ())
+    fail (where, problem);
+  if ((odometry.covariance.diagonal ().array () <= 0.0).any ())
     fail (where, "odometry covariance must have positive variances on its diagonal");
-  if (!std::isfinite (odometry.interval) || odometry.interval < 0.0)
-    fail (where, "the interval between the scans must be a time >= 0 s (0: unknown), not " +
-                     std::to_string (odometry.interval));
 }
 
 std::set<int>

@@ -4,6 +4,8 @@
 #include <pcl_crf/matching/scan_matching.h>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace pcl_crf {
@@ -38,6 +40,9 @@ AssociationStage
 firstAssociationPass (const Eigen::Matrix2Xd& source, const matching::PreparedTarget& target,
                       const matching::MotionGuess& guess, const matching::CrfMatchingModel& matcher)
 {
+  const std::string problem = matching::motionGuessProblem (guess);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint::firstAssociationPass] " + problem);
   AssociationStage stage;
   stage.source = matching::describeScan (source);
   matching::PassResult first = matching::runPass (stage.source, target, guess, guess.T_target_source,

@@ -349,6 +349,9 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     fail ("the source and target scans must not be empty");
   if (!source.allFinite () || !target.allFinite ())
     fail ("the scans hold NaN or infinite points");
+  const std::string odometry_problem = odometryProblem (odometry);
+  if (!odometry_problem.empty ())
+    fail (odometry_problem);
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   JointResult result;

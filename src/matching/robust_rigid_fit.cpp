@@ -147,6 +147,9 @@ closedFormFit (const WeightedPairs& pairs, const Rigid2d& T)
 MotionGuess
 MotionGuess::fromOdometry (const Odometry& odometry)
 {
+  const std::string problem = odometryProblem (odometry);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::matching::MotionGuess::fromOdometry] " + problem);
   MotionGuess guess;
   guess.T_target_source = odometry.T_source_target.inverse ();
   guess.interval = odometry.interval;
@@ -162,6 +165,20 @@ MotionGuess::fromOdometry (const Odometry& odometry)
   if (covariance.allFinite () && solver.info () == Eigen::Success && (solver.vectorD ().array () > 0.0).all ())
     guess.information = solver.solve (Eigen::Matrix3d::Identity ());
   return guess;
+}
+
+std::string
+motionGuessProblem (const MotionGuess& guess)
+{
+  if (!guess.T_target_source.matrix ().allFinite ())
+    return "the motion guess has a NaN or infinite value";
+  if (!isRotation (guess.T_target_source))
+    return "the motion guess's linear part is not a rotation";
+  if (!guess.information.allFinite ())
+    return "the motion guess's information matrix has a NaN or infinite value";
+  if (!std::isfinite (guess.interval) || guess.interval < 0.0)
+    return "the interval between the scans must be a time >= 0 s (0: unknown), not " + std::to_string (guess.interval);
+  return {};
 }
 
 Rigid2d

@@ -49,14 +49,17 @@ checkModel (const CrfMatchingModel& model)
   validateParameters (model.parameters);
 }
 
-/** The model's and the source scan's checks, before any thinning (so that a NaN is
- *  named as such, not as a bearing). */
+/** The model's, the source scan's and the guess's checks, before any thinning (so
+ *  that a NaN is named as such, not as a bearing). */
 void
-checkModelAndSource (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source)
+checkInputs (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source, const MotionGuess& guess)
 {
   checkModel (model);
   if (!source.allFinite ())
     throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  const std::string problem = motionGuessProblem (guess);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] " + problem);
 }
 
 /** The candidates and marginals of a full source point: those of its anchor, as full
@@ -139,7 +142,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModelAndSource (model, source);
+  checkInputs (model, source, guess);
   MatchResult result;
   result.T_target_source = guess.T_target_source;
   if (source.cols () == 0)
@@ -179,7 +182,7 @@ MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
             const CrfMatchingModel& model)
 {
-  checkModelAndSource (model, source);
+  checkInputs (model, source, guess);
   ThinnedPair thinned;
   thinned.source = thinToSpacing (source, model.parameters.training_beam_spacing);
   thinned.target = target.thinned;

@@ -145,6 +145,8 @@ TEST (ClusteringEgo, ClusterSizesArePriorOfTheStaticWorld)
   EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {0, 5}), 1);
   EXPECT_EQ (selectStaticCluster ({small, large}, odometry, {0, 0}), 0);
   EXPECT_THROW (selectStaticCluster ({small, large}, odometry, {3}), std::invalid_argument);
+  odometry.T_source_target.translation ().x () = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (selectStaticCluster ({small, large}, odometry, {20, 200}), std::invalid_argument);
 }
 
 TEST (ClusteringFits, HardAndSoftFitsRecoverKnownMotions)

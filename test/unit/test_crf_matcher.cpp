@@ -218,6 +218,24 @@ TYPED_TEST (CrfMatcherTest, BadInputGivesAnEmptyResult)
     matcher.determineCorrespondences (correspondences);
     EXPECT_FALSE (correspondences.empty ());
   }
+  {  // a NaN odometry reading is refused; a NaN guess is named when matching
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    matcher.setInputSource (this->source_);
+    matcher.setInputTarget (this->target_);
+    matcher.setOdometry (this->pair_.odometry);
+    const Eigen::Matrix4f before = matcher.getInitialGuess ();
+    pcl_crf::Odometry nan_odometry = this->pair_.odometry;
+    nan_odometry.T_source_target.translation ().x () = std::numeric_limits<double>::quiet_NaN ();
+    matcher.setOdometry (nan_odometry);
+    EXPECT_TRUE (matcher.getInitialGuess ().isApprox (before));
+    Eigen::Matrix4f nan_guess = Eigen::Matrix4f::Identity ();
+    nan_guess (0, 3) = std::numeric_limits<float>::quiet_NaN ();
+    matcher.setInitialGuess (nan_guess);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);  // once a crash in the features
+    EXPECT_TRUE (correspondences.empty ());
+  }
   pcl::console::setVerbosityLevel (level);
 }
 

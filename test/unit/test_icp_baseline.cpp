@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace {
 
 using pcl_crf::makeRigid2d;
@@ -46,6 +48,13 @@ TEST (IcpBaseline, RejectsEmptyScansAndNonsenseOptions)
   options.max_iterations = 0;
   EXPECT_THROW (pcl_crf::runIcpBaseline (pair, options), std::invalid_argument);
   pair.target.resize (2, 0);
+  EXPECT_THROW (pcl_crf::runIcpBaseline (pair), std::invalid_argument);
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  pair = pcl_crf::test::staticRoomPair (makeRigid2d (0.1, 0.0, 0.0));
+  pair.odometry.T_source_target.translation ().y () = nan;  // once a failed assertion in PCL's kd-tree
+  EXPECT_THROW (pcl_crf::runIcpBaseline (pair), std::invalid_argument);
+  pair = pcl_crf::test::staticRoomPair (makeRigid2d (0.1, 0.0, 0.0));
+  pair.source (0, 2) = nan;
   EXPECT_THROW (pcl_crf::runIcpBaseline (pair), std::invalid_argument);
 }
 

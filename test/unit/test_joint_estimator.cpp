@@ -420,6 +420,12 @@ TEST (JointEstimation, RejectsBadInput)
   Odometry backwards = pair.odometry;
   backwards.interval = -0.1;
   EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, backwards, shippedModel ()), std::invalid_argument);
+  Odometry nowhere = pair.odometry;  // once a crash in the features
+  nowhere.T_source_target.translation ().x () = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, nowhere, shippedModel ()), std::invalid_argument);
+  Odometry scaled = pair.odometry;
+  scaled.T_source_target.linear () *= 2.0;
+  EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, scaled, shippedModel ()), std::invalid_argument);
   joint::JointParameters one_beam;
   one_beam.sensor.beam_count = 1;
   one_beam.sensor.angle_increment = 0.01;
@@ -660,6 +666,10 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   estimator.align (aligned);  // a NaN interval
   EXPECT_FALSE (estimator.hasConverged ());
   estimator.setScanInterval (0.3);
+  Eigen::Matrix4f nan_guess = Eigen::Matrix4f::Identity ();
+  nan_guess (1, 3) = std::numeric_limits<float>::quiet_NaN ();
+  estimator.align (aligned, nan_guess);  // a NaN guess, reported
+  EXPECT_FALSE (estimator.hasConverged ());
   estimator.align (aligned);
   EXPECT_TRUE (estimator.hasConverged ());
 }

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -607,6 +608,30 @@ TEST (MatchingRobustFit, InverseOdometryCovarianceIsPropagated)
   // A singular covariance gives no prior.
   odometry.covariance.setZero ();
   EXPECT_TRUE (m::MotionGuess::fromOdometry (odometry).information.isZero ());
+  // An unusable reading (pcl_crf::odometryProblem) gives no guess at all.
+  odometry.covariance (1, 1) = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (m::MotionGuess::fromOdometry (odometry), std::invalid_argument);
+}
+
+TEST (MatchingGuess, EveryUnusableGuessIsNamed)
+{
+  m::MotionGuess guess;
+  guess.T_target_source = makeRigid2d (-0.3, 0.1, 0.02);
+  guess.information = Eigen::Vector3d (100.0, 100.0, 2500.0).asDiagonal ();
+  EXPECT_EQ (m::motionGuessProblem (guess), "");
+  m::MotionGuess bad = guess;
+  bad.T_target_source.translation ().x () = std::numeric_limits<double>::infinity ();
+  EXPECT_EQ (m::motionGuessProblem (bad), "the motion guess has a NaN or infinite value");
+  bad = guess;
+  bad.T_target_source.linear () *= 0.5;
+  EXPECT_EQ (m::motionGuessProblem (bad), "the motion guess's linear part is not a rotation");
+  bad = guess;
+  bad.information (0, 0) = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_EQ (m::motionGuessProblem (bad), "the motion guess's information matrix has a NaN or infinite value");
+  bad = guess;
+  bad.interval = -1.0;
+  EXPECT_EQ (m::motionGuessProblem (bad),
+             "the interval between the scans must be a time >= 0 s (0: unknown), not -1.000000");
 }
 
 }  // namespace

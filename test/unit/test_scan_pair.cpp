@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 
 namespace {
 
@@ -33,6 +35,41 @@ TEST (ScanPair, LooksUpObjectsById)
   EXPECT_EQ (pair.objectIndex (4), 0);
   EXPECT_EQ (pair.objectIndex (7), -1);
   EXPECT_EQ (pair.staticObjectId (), 0);
+}
+
+TEST (Odometry, EveryUnusableReadingIsNamed)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  pcl_crf::Odometry good;
+  good.T_source_target = pcl_crf::makeRigid2d (0.4, -0.1, 0.05);
+  good.covariance = Eigen::Vector3d (0.01, 0.01, 0.002).asDiagonal ();
+  good.interval = 0.1;
+  EXPECT_EQ (pcl_crf::odometryProblem (good), "");
+  pcl_crf::Odometry singular = good;  // no prior, but usable
+  singular.covariance.setZero ();
+  EXPECT_EQ (pcl_crf::odometryProblem (singular), "");
+
+  const auto problemWith = [&] (const std::function<void (pcl_crf::Odometry&)>& spoil) {
+    pcl_crf::Odometry odometry = good;
+    spoil (odometry);
+    return pcl_crf::odometryProblem (odometry);
+  };
+  EXPECT_EQ (problemWith ([&] (pcl_crf::Odometry& o) { o.T_source_target.translation ().x () = nan; }),
+             "odometry has a NaN or infinite value");
+  EXPECT_EQ (problemWith ([] (pcl_crf::Odometry& o) { o.T_source_target.linear () *= 2.0; }),
+             "odometry's linear part is not a rotation");
+  EXPECT_EQ (problemWith ([] (pcl_crf::Odometry& o) { o.T_source_target.linear ().col (0) *= -1.0; }),
+             "odometry's linear part is not a rotation");  // a reflection
+  EXPECT_EQ (problemWith ([&] (pcl_crf::Odometry& o) { o.covariance (2, 2) = nan; }),
+             "odometry covariance has a NaN or infinite value");
+  EXPECT_EQ (problemWith ([] (pcl_crf::Odometry& o) { o.covariance (0, 1) = 0.005; }),
+             "odometry covariance is not symmetric");
+  EXPECT_EQ (problemWith ([] (pcl_crf::Odometry& o) { o.covariance (1, 1) = -0.01; }),
+             "odometry covariance has a negative variance on its diagonal");
+  EXPECT_EQ (problemWith ([] (pcl_crf::Odometry& o) { o.interval = -0.1; }),
+             "the interval between the scans must be a time >= 0 s (0: unknown), not -0.100000");
+  EXPECT_EQ (problemWith ([&] (pcl_crf::Odometry& o) { o.interval = nan; }),
+             "the interval between the scans must be a time >= 0 s (0: unknown), not nan");
 }
 
 }  // namespace

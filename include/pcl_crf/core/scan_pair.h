@@ -85,6 +85,26 @@ struct ScanPair
   bool hasTruth () const;
 };
 
+/** \brief true when the linear part of \a T is a rotation (orthonormal to 1e-6,
+ *  determinant +1), as every motion pcl_crf takes must be. */
+bool
+isRotation (const Rigid2d& T);
+
+/** \brief What makes an odometry reading unusable, or an empty string when nothing does:
+ *  a NaN or infinite pose, a pose whose linear part is not a rotation, a covariance with
+ *  a NaN or infinite entry, one that is not symmetric or has a negative variance, or an
+ *  interval that is negative or not finite. A singular covariance (the zero matrix, say)
+ *  is usable: it gives the estimators no prior (matching::MotionGuess::fromOdometry).
+ *
+ *  \code
+ *  const std::string problem = pcl_crf::odometryProblem (odometry);
+ *  if (!problem.empty ())
+ *    throw std::invalid_argument (problem);
+ *  \endcode
+ */
+std::string
+odometryProblem (const Odometry& odometry);
+
 /** \brief A 2D pose (x [m], y [m], theta [rad]) as a rigid motion. */
 Rigid2d
 makeRigid2d (double x, double y, double theta);

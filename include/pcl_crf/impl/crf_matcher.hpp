@@ -62,6 +62,11 @@ CRFMatcher<PointSource, PointTarget, Scalar>::setInitialGuess (const Matrix4& T_
 template <typename PointSource, typename PointTarget, typename Scalar> void
 CRFMatcher<PointSource, PointTarget, Scalar>::setOdometry (const Odometry& odometry)
 {
+  const std::string problem = odometryProblem (odometry);
+  if (!problem.empty ()) {
+    PCL_ERROR ("[pcl_crf::%s::setOdometry] %s; guess unchanged\n", getClassName ().c_str (), problem.c_str ());
+    return;
+  }
   guess_ = matching::MotionGuess::fromOdometry (odometry);
 }
 

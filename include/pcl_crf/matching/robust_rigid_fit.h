@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -36,6 +37,12 @@ struct MotionGuess
   static MotionGuess
   fromOdometry (const Odometry& odometry);
 };
+
+/** \brief What makes a motion guess unusable, or an empty string when nothing does: a
+ *  NaN or infinite motion, a motion whose linear part is not a rotation, an information
+ *  matrix with a NaN or infinite entry, or an interval that is negative or not finite. */
+std::string
+motionGuessProblem (const MotionGuess& guess);
 
 /** \brief The static-world motion from associated pairs, robust to the pairs of
  *  moving objects.
