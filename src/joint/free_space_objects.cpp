@@ -62,29 +62,34 @@ movedPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const 
   return moved;
 }
 
-/** The target points of \a segment the source saw through when moved back by T⁻¹
- *  (T_target_source): under T they were not there, so they moved in. */
+/** No limit on a count of points seen through. */
+constexpr int kNoLimit = std::numeric_limits<int>::max ();
+
+/** \a counted plus the target points of \a segment the source saw through when moved
+ *  back by T⁻¹ (T_target_source): under T they were not there, so they moved in.
+ *  Counting stops once the sum exceeds \a limit (the sum returned is then above it
+ *  but may fall short of the full count). */
 int
-segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Rigid2d& T)
+segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Rigid2d& T,
+                    int counted = 0, int limit = kNoLimit)
 {
   const Rigid2d T_inverse = T.inverse ();
   const detail::SensorView& seen = scene.views.sourceView ();
-  int seen_through = 0;
-  for (int j = segment.begin; j < segment.end; ++j)
-    seen_through += matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint);
-  return seen_through;
+  for (int j = segment.begin; j < segment.end && counted <= limit; ++j)
+    counted += matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint);
+  return counted;
 }
 
-/** The object's points the target saw through when moved by T (under T they are no
- *  longer there). */
+/** \a counted plus the object's points the target saw through when moved by T (under
+ *  T they are no longer there); stops above \a limit as segmentSeenThrough () does. */
 int
-objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, const Rigid2d& T)
+objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, const Rigid2d& T,
+                   int counted = 0, int limit = kNoLimit)
 {
   const detail::SensorView& seen = scene.views.targetView ();
-  int seen_through = 0;
-  for (int i : object)
-    seen_through += matching::seesThrough (seen.profile, T * scene.source.col (i), seen.breakpoint);
-  return seen_through;
+  for (std::size_t k = 0; k < object.size () && counted <= limit; ++k)
+    counted += matching::seesThrough (seen.profile, T * scene.source.col (object[k]), seen.breakpoint);
+  return counted;
 }
 
 /** Per point of \a points: its nearest target point when T puts it within that
@@ -217,15 +222,21 @@ struct ShiftSearch
     return Eigen::Translation2d (shift * axis) * T_static;
   }
 
+  /** The points seen through under motion (shift), exact up to \a limit: counting
+   *  stops once it exceeds \a limit (a search that only compares counts with the
+   *  fewest so far needs no more). */
   int
-  seenThrough (double shift) const
+  seenThrough (double shift, int limit = kNoLimit) const
   {
     const Rigid2d T = motion (shift);
-    return segmentSeenThrough (scene, scene.views.targetSegments ()[segment], T) + objectSeenThrough (scene, object, T);
+    const int on_segment = segmentSeenThrough (scene, scene.views.targetSegments ()[segment], T, 0, limit);
+    return objectSeenThrough (scene, object, T, on_segment, limit);
   }
 };
 
-/** Points seen through at the shifts first + k · step, k = 0 … counts.size () − 1. */
+/** Points seen through at the shifts first + k · step, k = 0 … counts.size () − 1;
+ *  exact where they are at most the fewest of the shifts before (so at every shift
+ *  with the grid's fewest), above that fewest elsewhere. */
 struct ShiftGrid
 {
   double first = 0.0;
@@ -243,8 +254,11 @@ ShiftGrid
 sampleShifts (const ShiftSearch& search, double first, double step, int samples)
 {
   ShiftGrid grid{first, step, std::vector<int> (static_cast<std::size_t> (samples))};
-  for (int k = 0; k < samples; ++k)
-    grid.counts[k] = search.seenThrough (grid.shift (k));
+  int fewest = kNoLimit;
+  for (int k = 0; k < samples; ++k) {
+    grid.counts[k] = search.seenThrough (grid.shift (k), fewest);
+    fewest = std::min (fewest, grid.counts[k]);
+  }
   return grid;
 }
 
@@ -269,7 +283,7 @@ refineEdge (const ShiftSearch& search, double inside, double outside, int fewest
 {
   for (int halving = 0; halving < 4; ++halving) {
     const double middle = 0.5 * (inside + outside);
-    (search.seenThrough (middle) <= fewest ? inside : outside) = middle;
+    (search.seenThrough (middle, fewest) <= fewest ? inside : outside) = middle;
   }
   return inside;
 }
@@ -320,7 +334,7 @@ refineNarrowRun (const ShiftSearch& search, const ShiftGrid& grid, int low, int 
     half *= 0.5;
   }
   for (; resolved (half); half *= 0.5) {
-    const int below = search.seenThrough (centre - half), above = search.seenThrough (centre + half);
+    const int below = search.seenThrough (centre - half, least), above = search.seenThrough (centre + half, least);
     if (below < least && below <= above) {
       centre -= half;
       least = below;
