@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <istream>
 #include <limits>
@@ -80,13 +81,34 @@ public:
     return value;
   }
 
+  /** \a value as the shortest text that reads back as it ("0.25", "-1", "1e-09"). */
+  static std::string
+  shortest (double value)
+  {
+    char text[32];
+    for (int digits = 1; digits <= 17; ++digits) {
+      std::snprintf (text, sizeof (text), "%.*g", digits, value);
+      if (std::strtod (text, nullptr) == value)
+        break;
+    }
+    return text;
+  }
+
+  /** [\a min, \a max] in words: "in [0, 1.5]", ">= 0", or "> 0" for the smallest positive double. */
+  static std::string
+  range (double min, double max)
+  {
+    if (max < std::numeric_limits<double>::max ())
+      return "in [" + shortest (min) + ", " + shortest (max) + "]";
+    return min == std::numeric_limits<double>::min () ? "> 0" : ">= " + shortest (min);
+  }
+
   double
   real (const std::string& key, double min, double max = std::numeric_limits<double>::max ())
   {
     const double value = number (key, keyLine (key).front ());
     if (value < min || value > max)
-      fail ("'" + key + "' = " + std::to_string (value) + " is outside [" + std::to_string (min) + ", " +
-            std::to_string (max) + "]");
+      fail ("'" + key + "' = " + shortest (value) + " must be " + range (min, max));
     return value;
   }
 

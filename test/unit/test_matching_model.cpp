@@ -249,6 +249,18 @@ TEST_F (MatchingModelTest, MalformedModelFilesGiveClearErrors)
   const std::string nan_weight = readError (editedModel (*model_, "crf_weights ", "crf_weights nan "));
   EXPECT_NE (nan_weight.find ("crf_weights"), std::string::npos) << nan_weight;
   // Out of range, truncated, and a broken AdaBoost block.
+  const std::string negative = readError (editedModel (*model_, "shape_position_scale 10", "shape_position_scale -1"));
+  EXPECT_NE (negative.find ("'shape_position_scale' = -1 must be >= 0"), std::string::npos) << negative;
+  const std::string zero = readError (editedModel (*model_, "residual_scale 0.05", "residual_scale 0"));
+  EXPECT_NE (zero.find ("'residual_scale' = 0 must be > 0"), std::string::npos) << zero;
+  std::stringstream written;
+  m::writeModel (*model_, written);
+  std::string wide = written.str ();
+  const std::size_t line = wide.find ("segment_breakpoint_angle ");
+  wide.replace (line, wide.find ('\n', line) - line, "segment_breakpoint_angle 2");
+  const std::string angle = readError (wide);
+  EXPECT_NE (angle.find ("'segment_breakpoint_angle' = 2 must be in [0, 1.5707963267948966]"), std::string::npos)
+      << angle;
   EXPECT_NE (readError (editedModel (*model_, "passes 2", "passes 3")).find ("'passes' = 3 is not an integer in [1, 2]"),
              std::string::npos);
   std::stringstream text;
