@@ -31,6 +31,17 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullp
   return xy;
 }
 
+/** \brief The position in \a indices of the first index outside a cloud of \a size
+ *  points (negative or too large), or -1 when every index is a point of the cloud. */
+template <typename Index> long
+firstIndexOutside (const std::vector<Index>& indices, std::size_t size)
+{
+  for (std::size_t k = 0; k < indices.size (); ++k)
+    if (indices[k] < 0 || static_cast<std::size_t> (indices[k]) >= size)
+      return static_cast<long> (k);
+  return -1;
+}
+
 /** \brief Makes a PCL cloud (z = 0) from a 2 x N matrix. */
 template <typename PointT> void
 fromMatrix2X (const Eigen::Matrix2Xd& xy, pcl::PointCloud<PointT>& cloud)

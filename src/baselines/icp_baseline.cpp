@@ -25,6 +25,12 @@ checkOptions (const ScanPair& pair, const IcpBaselineOptions& options)
   const std::string problem = odometryProblem (pair.odometry);
   if (!problem.empty ())
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] " + problem);
+  // PCL's points are single precision: a squared distance must stay finite in float.
+  constexpr double kMaxCoordinate = 1e18;  // [m]; (4 · 1e18)² < FLT_MAX ≈ 3.4e38
+  const auto within = [] (const auto& values) { return values.cwiseAbs ().maxCoeff () <= kMaxCoordinate; };
+  if (!within (pair.source) || !within (pair.target) || !within (pair.odometry.T_source_target.translation ()))
+    throw std::invalid_argument ("[pcl_crf::runIcpBaseline] coordinates and odometry beyond 1e18 m do not fit "
+                                 "PCL's single-precision points");
   if (options.max_iterations <= 0 || !(options.max_correspondence_distance > 0.0) ||
       !(options.outlier_distance > 0.0) || !(options.transformation_epsilon >= 0.0))
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] iterations and distances must be positive");

@@ -35,6 +35,9 @@ makeTrainingChain (const PointPairs& pairs, const std::vector<int>& labels, cons
   if (labels.size () != pairs.size ())
     throw std::invalid_argument ("[pcl_crf::clustering::makeTrainingChain] " + std::to_string (labels.size ()) +
                                  " labels for " + std::to_string (pairs.size ()) + " pairs");
+  const std::string problem = pointPairsProblem (pairs);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::clustering::makeTrainingChain] " + problem);
   int cluster_count = 0;
   crf::LabelledChain chain;
   chain.labels = compactLabels (labels, cluster_count);

@@ -178,6 +178,9 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   validateParameters (parameters);
   if (weights.size () != kWeightCount || !weights.allFinite ())
     fail ("expected " + std::to_string (kWeightCount) + " finite weights, got " + std::to_string (weights.size ()));
+  const std::string problem = pointPairsProblem (pairs);
+  if (!problem.empty ())
+    fail (problem);
   CrfClusteringResult result;
   if (pairs.size () == 0)
     return result;

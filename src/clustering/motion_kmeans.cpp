@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace clustering {
@@ -79,6 +80,9 @@ clusterKMeans (const PointPairs& pairs, const MotionKMeansParameters& parameters
 {
   if (parameters.cluster_count < 1 || parameters.max_iterations < 1)
     throw std::invalid_argument ("[pcl_crf::clustering::clusterKMeans] cluster_count and max_iterations must be >= 1");
+  const std::string problem = pointPairsProblem (pairs);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::clustering::clusterKMeans] " + problem);
   MotionKMeansResult result;
   if (pairs.size () == 0)
     return result;

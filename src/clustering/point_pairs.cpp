@@ -51,6 +51,19 @@ estimateAngularResolution (const Eigen::Matrix2Xd& scan)
   return steps[steps.size () / 2];
 }
 
+std::string
+pointPairsProblem (const PointPairs& pairs)
+{
+  const auto n = static_cast<Eigen::Index> (pairs.size ());
+  if (pairs.source.cols () != n || pairs.target.cols () != n || pairs.spacing.size () != n)
+    return std::to_string (pairs.source.cols ()) + " source points, " + std::to_string (pairs.target.cols ()) +
+           " target points, " + std::to_string (pairs.spacing.size ()) + " spacings and " + std::to_string (n) +
+           " source indices: one of each per pair";
+  if (!pairs.source.allFinite () || !pairs.target.allFinite ())
+    return "the pairs hold NaN or infinite points";
+  return {};
+}
+
 PointPairs
 makePointPairs (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                 const std::vector<int>& source_match)

@@ -58,6 +58,8 @@ KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
   if (queries.cols () > 0 && queries.rows () != impl_->points.rows ())
     throw std::invalid_argument ("[pcl_crf::KnnIndex::search] queries have " + std::to_string (queries.rows ()) +
                                  " rows, the index " + std::to_string (impl_->points.rows ()));
+  if (!queries.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::KnnIndex::search] queries hold NaN or infinite values");
   Result result;
   result.indices.setConstant (k, queries.cols (), -1);
   result.squared_distances.setConstant (k, queries.cols (), std::numeric_limits<double>::infinity ());
@@ -66,7 +68,9 @@ KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
     return result;
   Eigen::MatrixXd query_copy = queries;
   // FLANN writes row-major (query x k) arrays: exactly our column-major (k x query) layout.
-  Eigen::Matrix<std::size_t, Eigen::Dynamic, Eigen::Dynamic> indices (found, queries.cols ());
+  constexpr std::size_t kUnwritten = std::numeric_limits<std::size_t>::max ();
+  Eigen::Matrix<std::size_t, Eigen::Dynamic, Eigen::Dynamic> indices =
+      Eigen::Matrix<std::size_t, Eigen::Dynamic, Eigen::Dynamic>::Constant (found, queries.cols (), kUnwritten);
   Eigen::MatrixXd distances (found, queries.cols ());
   flann::Matrix<double> query_matrix (query_copy.data (), queries.cols (), queries.rows ());
   flann::Matrix<std::size_t> index_matrix (indices.data (), queries.cols (), found);
@@ -74,6 +78,9 @@ KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
   flann::SearchParams params (flann::FLANN_CHECKS_UNLIMITED);
   params.cores = 1;
   impl_->index->knnSearch (query_matrix, index_matrix, distance_matrix, found, params);
+  if ((indices.array () == kUnwritten).any ())  // FLANN keeps no neighbour at an infinite distance
+    throw std::invalid_argument ("[pcl_crf::KnnIndex::search] squared distances overflow to infinity: coordinates "
+                                 "(points, queries, motions) of 1e154 or more are not distances in metres");
   result.indices.topRows (found) = indices.cast<int> ();
   result.squared_distances.topRows (found) = distances;
   return result;

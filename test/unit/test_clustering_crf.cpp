@@ -13,7 +13,9 @@
 
 #include <cmath>
 #include <map>
+#include <limits>
 #include <random>
+#include <string>
 
 namespace {
 
@@ -315,6 +317,28 @@ TEST (KMeansBaseline, RecoversTwoMotionsAndSplitsAStaticWorld)
   EXPECT_GE (clusterKMeans (pairs, parameters).motions.size (), 3u);
   parameters.cluster_count = 0;
   EXPECT_THROW (clusterKMeans (pairs, parameters), std::invalid_argument);
+}
+
+TEST (PointPairsCheck, PairsBuiltByHandWithMissingPartsAreRejected)
+{
+  const ScanPair pair = makePair (street ({8, 0}, {12.5, 1.8}), kEgo, kCarMotion, true);
+  const PointPairs pairs = makePointPairs (pair.source, pair.target, pair.source_match);
+  EXPECT_EQ (pointPairsProblem (pairs), "");
+  const auto n = std::to_string (pairs.size ());
+  PointPairs no_target = pairs;  // these once crashed K-Means and CRF-Clustering
+  no_target.target.resize (2, 0);
+  EXPECT_EQ (pointPairsProblem (no_target),
+             n + " source points, 0 target points, " + n + " spacings and " + n + " source indices: one of each per pair");
+  EXPECT_THROW (clusterKMeans (no_target), std::invalid_argument);
+  EXPECT_THROW (clusterPointPairs (no_target, typicalWeights ()), std::invalid_argument);
+  PointPairs no_spacing = pairs;
+  no_spacing.spacing.resize (0);
+  EXPECT_THROW (clusterPointPairs (no_spacing, typicalWeights ()), std::invalid_argument);
+  EXPECT_THROW (makeTrainingChain (no_spacing, std::vector<int> (pairs.size (), 0)), std::invalid_argument);
+  PointPairs nan = pairs;
+  nan.target (1, 0) = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_EQ (pointPairsProblem (nan), "the pairs hold NaN or infinite points");
+  EXPECT_THROW (clusterKMeans (nan), std::invalid_argument);
 }
 
 }  // namespace

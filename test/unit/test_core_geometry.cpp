@@ -103,6 +103,13 @@ TEST (KnnIndex, FewerPointsThanKAndBadInput)
   Eigen::MatrixXd bad = two;
   bad (0, 0) = std::nan ("");
   EXPECT_THROW (pcl_crf::KnnIndex {bad}, std::invalid_argument);
+  EXPECT_THROW (index.search (bad.col (0), 1), std::invalid_argument);
+  // A query 1e154 m away: every squared distance overflows, FLANN keeps no neighbour
+  // (its output used to be left unwritten: garbage indices, then a crash downstream).
+  EXPECT_THROW (index.search (Eigen::Vector2d (1e154, 1e154), 1), std::invalid_argument);
+  const auto far = index.search (Eigen::Vector2d (1e150, 0.0), 2);  // still finite: both found (a tie)
+  EXPECT_EQ (far.indices.col (0).sum (), 1);
+  EXPECT_EQ (far.indices.col (0).minCoeff (), 0);
 }
 
 }  // namespace

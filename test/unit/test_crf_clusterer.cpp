@@ -194,6 +194,13 @@ TYPED_TEST (CRFClustererTest, BadInputGivesAnEmptyResult)
   expectEmpty ("one correspondence");
   this->clusterer.setCorrespondences (this->scene.correspondences);
 
+  auto outside = pcl::make_shared<pcl::Indices> (pcl::Indices{0, 1, static_cast<int> (this->scene.source->size ())});
+  this->clusterer.setIndices (outside);  // once a crash
+  expectEmpty ("source index out of range");
+  (*outside)[2] = -5;
+  expectEmpty ("negative source index");
+  this->clusterer.setIndices (pcl::IndicesPtr ());  // the whole cloud again
+
   this->clusterer.setMaximumIterations (0);
   expectEmpty ("zero iterations");
   this->clusterer.setMaximumIterations (20);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace {
 
@@ -235,6 +236,25 @@ TYPED_TEST (CrfMatcherTest, BadInputGivesAnEmptyResult)
     correspondences.emplace_back (0, 0, 1.0f);
     matcher.determineCorrespondences (correspondences);  // once a crash in the features
     EXPECT_TRUE (correspondences.empty ());
+  }
+  {  // source indices outside the cloud (once a crash)
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    matcher.setInputSource (this->source_);
+    matcher.setInputTarget (this->target_);
+    auto outside = pcl::make_shared<pcl::Indices> (pcl::Indices{0, 1, static_cast<int> (this->source_->size ())});
+    matcher.setIndicesSource (outside);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    (*outside)[2] = -5;
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    outside->resize (this->source_->size ());
+    std::iota (outside->begin (), outside->end (), 0);  // every point: it recovers
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_FALSE (correspondences.empty ());
   }
   pcl::console::setVerbosityLevel (level);
 }

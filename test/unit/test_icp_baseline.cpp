@@ -56,6 +56,9 @@ TEST (IcpBaseline, RejectsEmptyScansAndNonsenseOptions)
   pair = pcl_crf::test::staticRoomPair (makeRigid2d (0.1, 0.0, 0.0));
   pair.source (0, 2) = nan;
   EXPECT_THROW (pcl_crf::runIcpBaseline (pair), std::invalid_argument);
+  pair = pcl_crf::test::staticRoomPair (makeRigid2d (0.1, 0.0, 0.0));
+  pair.odometry.T_source_target.translation ().x () = 1e38;  // finite in double, not in float arithmetic
+  EXPECT_THROW (pcl_crf::runIcpBaseline (pair), std::invalid_argument);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -52,6 +53,18 @@ struct PointPairs
 PointPairs
 makePointPairs (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                 const std::vector<int>& source_match);
+
+/** \brief What makes \a pairs inconsistent, or an empty string when nothing does:
+ *  source, target, source_index and spacing of different lengths, or a non-finite
+ *  point. makePointPairs () always gives consistent pairs; the estimators check pairs
+ *  built by hand.
+ *
+ *  \code
+ *  const std::string problem = pcl_crf::clustering::pointPairsProblem (pairs);
+ *  \endcode
+ */
+std::string
+pointPairsProblem (const PointPairs& pairs);
 
 /** \brief The median bearing step between consecutive points of a scan in beam order
  *  [rad]: the beam spacing when fewer than half the beams are missing. 0 for fewer

@@ -51,7 +51,9 @@ public:
   points () const;
 
   /** \brief The k nearest indexed points of every column of \a queries
-   *  (rows must equal the indexed dimension). */
+   *  (rows must equal the indexed dimension).
+   *  \throws std::invalid_argument for k ≤ 0, queries of another dimension, non-finite
+   *  queries, or squared distances that overflow to infinity (no neighbour found). */
   Result
   search (const Eigen::MatrixXd& queries, int k) const;
 

@@ -2,6 +2,7 @@
 
 #include <pcl_crf/clustering/clustering_model.h>
 #include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/cloud_conversion.h>
 #include <pcl_crf/core/planar_transform.h>
 #include <pcl_crf/crf_clusterer.h>
 
@@ -73,6 +74,14 @@ pcl_crf::CRFClusterer<PointT>::prepare (Eigen::Matrix2Xd& source, Eigen::Matrix2
   if (weights_.size () != clustering::kWeightCount)
   {
     PCL_ERROR ("[pcl_crf::%s::extract] no weights: call setWeights () or loadModel ()\n", getClassName ().c_str ());
+    return false;
+  }
+  const long outside = firstIndexOutside (*indices_, input_->size ());
+  if (outside >= 0)
+  {
+    PCL_ERROR ("[pcl_crf::%s::extract] source index %d (position %ld of the indices) is not a point of the "
+               "%zu-point source cloud\n",
+               getClassName ().c_str (), static_cast<int> ((*indices_)[outside]), outside, input_->size ());
     return false;
   }
   // Source: the finite points of indices_, in cloud (beam) order; target: every point.

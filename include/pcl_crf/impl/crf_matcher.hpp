@@ -115,6 +115,13 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   }
   if (!pcl::PCLBase<PointSource>::initCompute ())
     return false;
+  const long outside = firstIndexOutside (*indices_, input_->size ());
+  if (outside >= 0) {
+    PCL_ERROR ("[pcl_crf::%s::%s] Source index %d (position %ld of the indices) is not a point of the %zu-point "
+               "source cloud.\n",
+               getClassName ().c_str (), method, static_cast<int> ((*indices_)[outside]), outside, input_->size ());
+    return false;
+  }
   // The valid source points in beam order (the indices, or the whole cloud).
   source_xy_.resize (2, static_cast<Eigen::Index> (indices_->size ()));
   source_index_.clear ();
