@@ -56,6 +56,9 @@ learnWeights (const std::vector<crf::LabelledChain>& chains, const LearningOptio
     any_node = any_node || chain.features.size () > 0;
   if (!any_node)
     throw std::invalid_argument ("[pcl_crf::clustering::learnWeights] no training chain has a node");
+  if (!crf::hasAnEdge (chains))
+    throw std::invalid_argument ("[pcl_crf::clustering::learnWeights] no training chain has an edge: the pairwise "
+                                 "weights need pairs with two or more associated points");
   for (const crf::LabelledChain& chain : chains)
     if ((chain.features.size () > 0 && chain.features.unaryDimension () != kUnaryFeatureCount) ||
         (!chain.features.pairwise.empty () && chain.features.pairwiseDimension () != kPairwiseFeatureCount))

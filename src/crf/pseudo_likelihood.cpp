@@ -1,6 +1,7 @@
 #include <pcl_crf/crf/pseudo_likelihood.h>
 #include <pcl_crf/crf/log_space.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,12 @@ checkLabels (const LabelledChain& chain, std::size_t c)
 }
 
 }  // namespace
+
+bool
+hasAnEdge (const std::vector<LabelledChain>& chains)
+{
+  return std::any_of (chains.begin (), chains.end (), [] (const LabelledChain& c) { return !c.features.pairwise.empty (); });
+}
 
 PseudoLikelihood::PseudoLikelihood (std::vector<LabelledChain> chains, double prior_sigma)
   : chains_ (std::move (chains))

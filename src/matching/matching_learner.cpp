@@ -127,6 +127,9 @@ trainCrfWeights (const std::vector<TrainingPair>& pairs, const StageModel& stage
     chains.push_back ({matchingChainFeatures (pair.source, pair.target.scan, pair.pass, scores, parameters.residual_scale),
                        pair.labels});
   }
+  if (!crf::hasAnEdge (chains))
+    throw std::invalid_argument ("[pcl_crf::matching::trainCrfMatching] no training pair has two or more source "
+                                 "points: the pairwise weights cannot be learned");
   const crf::PseudoLikelihood learner (std::move (chains), parameters.prior_sigma);
   const crf::LbfgsResult fit = learner.train ();
   report.objective = fit.value;

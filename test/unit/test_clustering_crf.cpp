@@ -341,4 +341,17 @@ TEST (PointPairsCheck, PairsBuiltByHandWithMissingPartsAreRejected)
   EXPECT_THROW (clusterKMeans (nan), std::invalid_argument);
 }
 
+TEST (ClusteringLearning, ChainsWithoutAnEdgeCannotTeachThePairwiseWeights)
+{
+  // Once 2 weights of the 5, refused only when used.
+  const ScanPair pair = makePair (street ({8, 0}, {12.5, 1.8}), kEgo, kCarMotion, true);
+  std::vector<int> one_match (pair.source_match.size (), kNoMatch);
+  one_match[10] = pair.source_match[10];
+  ASSERT_NE (one_match[10], kNoMatch);
+  const PointPairs one = makePointPairs (pair.source, pair.target, one_match);
+  const std::vector<crf::LabelledChain> chains{makeTrainingChain (one, {0})};
+  EXPECT_THROW (learnWeights (chains), std::invalid_argument);
+  EXPECT_FALSE (crf::hasAnEdge (chains));
+}
+
 }  // namespace

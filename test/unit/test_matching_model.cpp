@@ -158,6 +158,23 @@ TEST_F (MatchingModelTest, EmptySourceAndTargetAreHandled)
   EXPECT_THROW (m::matchScans (pair.source, pair.target, guess, m::CrfMatchingModel ()), std::invalid_argument);
 }
 
+TEST (MatchingTraining, PairsOfOnePointCannotTeachThePairwiseWeights)
+{
+  // Once a model with 3 of its 10 weights, refused only when used.
+  pcl_crf::ScanPair pair = simulatedPairs (11, 1).front ();
+  pair.source.conservativeResize (2, 1);
+  pair.source_object.resize (1);
+  pair.source_match.resize (1);
+  try {
+    m::trainCrfMatching ({pair}, m::MatchingParameters ());
+    ADD_FAILURE () << "no exception";
+  }
+  catch (const std::invalid_argument& error) {
+    EXPECT_NE (std::string (error.what ()).find ("no training pair has two or more source points"), std::string::npos)
+        << error.what ();
+  }
+}
+
 TEST_F (MatchingModelTest, ModelFileRoundTripIsExact)
 {
   std::stringstream text;

@@ -24,6 +24,11 @@ namespace crf {
  *  const pcl_crf::crf::ChainPotentials chain = pcl_crf::crf::potentials (test_features, fit.x);
  *  \endcode
  */
+/** \brief true when a chain of \a chains has an edge (without one no pairwise weight
+ *  can be learned: PseudoLikelihood then learns the unary weights only). */
+bool
+hasAnEdge (const std::vector<LabelledChain>& chains);
+
 class PseudoLikelihood
 {
 public:
