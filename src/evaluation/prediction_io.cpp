@@ -120,7 +120,9 @@ loadPrediction (const std::string& dir)
   }
   const std::string cloud_path = (fs::path (dir) / "prediction.pcd").string ();
   pcl::PointCloud<PointXYZClusterMatch> cloud;
-  pcl::fromPCLPointCloud2 (detail::readPcdBlob (cloud_path, {"x", "y", "cluster", "match"}), cloud);
+  pcl::fromPCLPointCloud2 (detail::readPcdBlob (
+      cloud_path, {{"x", pcl::PCLPointField::FLOAT32}, {"y", pcl::PCLPointField::FLOAT32},
+                   {"cluster", pcl::PCLPointField::INT32}, {"match", pcl::PCLPointField::INT32}}), cloud);
   for (const auto& point : cloud) {
     if (has_match)
       prediction.source_match.push_back (point.match);

@@ -16,6 +16,16 @@ namespace fs = std::filesystem;
 namespace pcl_crf {
 namespace {
 
+constexpr auto kFloat32 = pcl::PCLPointField::FLOAT32;
+
+/** \brief The fields of source.pcd as writeSource writes them (pcl_crf::PointXYZLMatch). */
+const std::vector<detail::PcdField> kSourceFields = {
+    {"x", kFloat32}, {"y", kFloat32}, {"label", pcl::PCLPointField::UINT32}, {"match", pcl::PCLPointField::INT32}};
+
+/** \brief The fields of target.pcd as writeTarget writes them (pcl::PointXYZL). */
+const std::vector<detail::PcdField> kTargetFields = {
+    {"x", kFloat32}, {"y", kFloat32}, {"label", pcl::PCLPointField::UINT32}};
+
 template <typename PointT> void
 copyPositions (const pcl::PointCloud<PointT>& cloud, const std::string& path, Eigen::Matrix2Xd& xy,
                std::vector<int>& labels)
@@ -34,7 +44,7 @@ copyPositions (const pcl::PointCloud<PointT>& cloud, const std::string& path, Ei
 void
 readSource (const std::string& path, ScanPair& pair)
 {
-  const pcl::PCLPointCloud2 blob = detail::readPcdBlob (path, {"x", "y", "label", "match"});
+  const pcl::PCLPointCloud2 blob = detail::readPcdBlob (path, kSourceFields);
   pcl::PointCloud<PointXYZLMatch> cloud;
   pcl::fromPCLPointCloud2 (blob, cloud);
   copyPositions (cloud, path, pair.source, pair.source_object);
@@ -47,7 +57,7 @@ void
 readTarget (const std::string& path, ScanPair& pair)
 {
   pcl::PointCloud<pcl::PointXYZL> cloud;
-  pcl::fromPCLPointCloud2 (detail::readPcdBlob (path, {"x", "y", "label"}), cloud);
+  pcl::fromPCLPointCloud2 (detail::readPcdBlob (path, kTargetFields), cloud);
   copyPositions (cloud, path, pair.target, pair.target_object);
 }
 

@@ -9,9 +9,37 @@
 
 namespace pcl_crf {
 namespace detail {
+namespace {
+
+/** \brief A field's layout as the PCD header spells it, e.g. "TYPE F SIZE 4 COUNT 1". */
+std::string
+describeLayout (int datatype, std::uint32_t count)
+{
+  const int size = pcl::getFieldSize (datatype);
+  if (size == 0)
+    return "a TYPE/SIZE pair PCL does not know";
+  return "TYPE " + std::string (1, pcl::getFieldType (datatype)) + " SIZE " + std::to_string (size) + " COUNT " +
+         std::to_string (count);
+}
+
+/** \brief Checks that \a blob's header declares \a field with its datatype and COUNT 1. */
+void
+checkField (const pcl::PCLPointCloud2& blob, const PcdField& field, const std::string& path)
+{
+  const int index = pcl::getFieldIndex (blob, field.name);
+  if (index < 0)
+    throw DatasetError (path + ": missing field '" + field.name + "'");
+  const pcl::PCLPointField& found = blob.fields[index];
+  if (found.datatype != field.datatype || found.count != 1)
+    throw DatasetError (path + ": field '" + field.name + "' must be " +
+                        describeLayout (field.datatype, 1) + ", found " +
+                        describeLayout (found.datatype, found.count));
+}
+
+}  // namespace
 
 pcl::PCLPointCloud2
-readPcdBlob (const std::string& path, const std::vector<std::string>& fields)
+readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
 {
   if (!std::filesystem::is_regular_file (path))
     throw DatasetError (path + ": file not found");
@@ -26,11 +54,10 @@ readPcdBlob (const std::string& path, const std::vector<std::string>& fields)
     throw DatasetError (path + ": not a PCD file (unreadable header, or no FIELDS/SIZE/TYPE)");
   if (static_cast<std::size_t> (blob.width) * blob.height == 0)
     throw DatasetError (path + ": PCD header declares no points");
+  for (const auto& field : fields)
+    checkField (blob, field, path);
   if (reader.read (path, blob) != 0)
     throw DatasetError (path + ": not a readable PCD file (truncated or corrupt data)");
-  for (const auto& field : fields)
-    if (pcl::getFieldIndex (blob, field) < 0)
-      throw DatasetError (path + ": missing field '" + field + "'");
   return blob;
 }
 

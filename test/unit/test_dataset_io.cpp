@@ -174,6 +174,26 @@ TEST_F (DatasetIo, MissingMatchFieldIsNamed)
   expectLoadError (pair_dir, "missing field 'match'");
 }
 
+TEST_F (DatasetIo, FieldOfAnotherTypeSizeOrCountIsNamed)
+{
+  // PCL's conversion leaves a field of another TYPE, SIZE or COUNT at 0 without a word.
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path source = fs::path (pair_dir) / "source.pcd";
+  replaceInFile (source, "TYPE F F F U I", "TYPE F F F F I");
+  expectLoadError (pair_dir, "source.pcd: field 'label' must be TYPE U SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 1");
+  replaceInFile (source, "TYPE F F F F I", "TYPE F F F U F");
+  expectLoadError (pair_dir, "source.pcd: field 'match' must be TYPE I SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 1");
+  replaceInFile (source, "TYPE F F F U F", "TYPE F F F U I");
+  replaceInFile (source, "SIZE 4 4 4 4 4", "SIZE 8 8 4 4 4");
+  expectLoadError (pair_dir, "source.pcd: field 'x' must be TYPE F SIZE 4 COUNT 1, found TYPE F SIZE 8 COUNT 1");
+  replaceInFile (source, "SIZE 8 8 4 4 4", "SIZE 4 4 4 4 4");
+  replaceInFile (source, "COUNT 1 1 1 1 1", "COUNT 1 2 1 1 1");
+  expectLoadError (pair_dir, "source.pcd: field 'y' must be TYPE F SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 2");
+  replaceInFile (source, "COUNT 1 2 1 1 1", "COUNT 1 1 1 1 1");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "TYPE F F F U", "TYPE F F F I");
+  expectLoadError (pair_dir, "target.pcd: field 'label' must be TYPE U SIZE 4 COUNT 1, found TYPE I SIZE 4 COUNT 1");
+}
+
 TEST_F (DatasetIo, MatchOutOfRangeIsAnError)
 {
   ScanPair pair = makeSmallPair ();
