@@ -28,6 +28,9 @@ checkSensor (const SensorInfo& sensor, const std::string& where)
 {
   if (sensor.beam_count <= 0)
     fail (where, "sensor beam count must be positive");
+  if (sensor.beam_count > kMaxBeamCount)
+    fail (where, "sensor beam count " + std::to_string (sensor.beam_count) + " exceeds " +
+                     std::to_string (kMaxBeamCount) + " (no 2D laser has that many beams)");
   if (!std::isfinite (sensor.angle_min) || !std::isfinite (sensor.angle_increment) ||
       !std::isfinite (sensor.range_max))
     fail (where, "sensor angles and range must be finite numbers");

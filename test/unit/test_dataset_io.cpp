@@ -227,6 +227,17 @@ TEST_F (DatasetIo, InconsistentSizesAreErrors)
   EXPECT_THROW (pcl_crf::validateScanPair (pair, "x"), DatasetError);
 }
 
+TEST_F (DatasetIo, AbsurdBeamCountIsAnError)
+{
+  // A corrupt beam count made the cbd method allocate gigabytes.
+  ScanPair pair = makeSmallPair ();
+  pair.sensor.beam_count = pcl_crf::kMaxBeamCount;
+  EXPECT_NO_THROW (pcl_crf::validateScanPair (pair, "x"));
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "pair.txt", "sensor 5 ", "sensor 1000000000 ");
+  expectLoadError (pair_dir, "sensor beam count 1000000000 exceeds 100000");
+}
+
 TEST_F (DatasetIo, EmptyScanIsAnError)
 {
   ScanPair pair = makeSmallPair ();
