@@ -72,9 +72,11 @@ printHelp (const char* program)
   line ("--pairs N", "number of pairs, N > 0 (default 10)");
   line ("--first K", "index of the first pair (default 0); pair k only depends on (seed, k)");
   line ("--seed S", "master random seed, integer >= 0 (default " + std::to_string (d.seed) + ")");
-  line ("--beams B", "laser beams per scan, B > 1 (default " + std::to_string (d.laser.beam_count) + ")");
+  line ("--beams B", "laser beams per scan, 2 <= B <= " + std::to_string (sim::kMaxSimulatedBeams) + " (default " +
+                         std::to_string (d.laser.beam_count) + ")");
   line ("--fov DEG", "field of view centred forward, (0, 360] degrees (default 180)");
-  line ("--range M", "maximum range in metres (default " + fmt (d.laser.range_max) + ")");
+  line ("--range M", "maximum range in metres, (0, " + fmt (sim::kMaxSimulatedRange) + "] (default " +
+                         fmt (d.laser.range_max) + ")");
   line ("--noise M", "Gaussian range noise std in metres, >= 0 (default " + fmt (d.laser.range_noise) + ")");
   line ("--dropout P", "probability a beam returns nothing, in [0, 1) (default " + fmt (d.laser.dropout_probability) + ")");
   line ("--speed M/S", "ego speed in m/s, >= 0 (default " + fmt (d.ego_speed) + ")");
@@ -83,9 +85,12 @@ printHelp (const char* program)
   line ("--object-speed M/S", "speed of every moving object in m/s; -1 = drawn per kind (default -1)");
   line ("--scene TYPE", "mixed|outline|crossing|overtaking|opposite|pedestrians|static (default mixed)");
   line ("--spacing MODE", "travel (ego travels --travel metres) | consecutive (1/--scan-rate s) (default travel)");
-  line ("--travel MIN,MAX", "ego travel between the scans in metres for travel spacing (default " +
-                                fmt (d.travel_min) + "," + fmt (d.travel_max) + ")");
-  line ("--scan-rate HZ", "scan rate in Hz for consecutive spacing (default " + fmt (d.scan_rate) + ")");
+  line ("--travel MIN,MAX", "ego travel between the scans in metres for travel spacing, 0 < MIN <= MAX <= " +
+                                fmt (sim::kMaxSimulatedTravel) + " (default " + fmt (d.travel_min) + "," +
+                                fmt (d.travel_max) + ")");
+  line ("--scan-rate HZ", "scan rate in Hz for consecutive spacing, >= " + fmt (sim::kMinSimulatedScanRate) +
+                              ", with --speed / HZ <= " + fmt (sim::kMaxSimulatedTravel) + " m (default " +
+                              fmt (d.scan_rate) + ")");
   line ("--odom-noise SX,SY,ST", "odometry noise std: dx [m], dy [m], dtheta [rad] (default " +
                                      fmt (d.odometry_noise[0]) + "," + fmt (d.odometry_noise[1]) + "," +
                                      fmt (d.odometry_noise[2]) + ")");
@@ -177,8 +182,8 @@ parseOptions (int argc, char** argv)
   }
   if (value (argc, argv, "--beams", text)) {
     const long long beams = toInteger ("--beams", text);
-    if (beams <= 1 || beams > 1000000)
-      throw UsageError ("--beams must be in 2..1000000, got " + text);
+    if (beams <= 1 || beams > sim::kMaxSimulatedBeams)
+      throw UsageError ("--beams must be in 2.." + std::to_string (sim::kMaxSimulatedBeams) + ", got " + text);
     c.laser.beam_count = static_cast<int> (beams);
   }
   if (value (argc, argv, "--fov", text))

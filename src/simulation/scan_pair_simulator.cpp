@@ -42,6 +42,15 @@ fail (const std::string& what)
   throw SimulationError (what);
 }
 
+/** \a value as %g prints it, for messages ("1000", "1e+09"). */
+std::string
+number (double value)
+{
+  char text[32];
+  std::snprintf (text, sizeof (text), "%g", value);
+  return text;
+}
+
 void
 requireFinite (double value, const char* what)
 {
@@ -104,14 +113,16 @@ void
 validateSimulatorConfig (const SimulatorConfig& c)
 {
   const LaserConfig& l = c.laser;
-  if (l.beam_count < 2)
-    fail ("beam count must be at least 2 (--beams), got " + std::to_string (l.beam_count));
+  if (l.beam_count < 2 || l.beam_count > kMaxSimulatedBeams)
+    fail ("beam count (--beams) must be in 2.." + std::to_string (kMaxSimulatedBeams) + ", got " +
+          std::to_string (l.beam_count));
   requireFinite (l.field_of_view, "field of view (--fov)");
   if (l.field_of_view <= 0.0 || l.field_of_view > kTwoPi + 1e-9)
     fail ("field of view (--fov) must be in (0, 360] degrees");
   requireFinite (l.range_max, "maximum range (--range)");
-  if (l.range_max <= 0.0)
-    fail ("maximum range (--range) must be positive");
+  if (l.range_max <= 0.0 || l.range_max > kMaxSimulatedRange)
+    fail ("maximum range (--range) must be in (0, " + number (kMaxSimulatedRange) + "] m, got " +
+          number (l.range_max));
   requireFinite (l.range_noise, "range noise (--noise)");
   if (l.range_noise < 0.0)
     fail ("range noise (--noise) must not be negative");
@@ -128,13 +139,18 @@ validateSimulatorConfig (const SimulatorConfig& c)
             "standing sensor");
     requireFinite (c.travel_min, "travel distance (--travel)");
     requireFinite (c.travel_max, "travel distance (--travel)");
-    if (c.travel_min <= 0.0 || c.travel_max < c.travel_min)
-      fail ("travel distances (--travel MIN,MAX) must satisfy 0 < MIN <= MAX");
+    if (c.travel_min <= 0.0 || c.travel_max < c.travel_min || c.travel_max > kMaxSimulatedTravel)
+      fail ("travel distances (--travel MIN,MAX) must satisfy 0 < MIN <= MAX <= " +
+            number (kMaxSimulatedTravel) + " m, got " + number (c.travel_min) + "," + number (c.travel_max));
   }
   else {
     requireFinite (c.scan_rate, "scan rate (--scan-rate)");
-    if (c.scan_rate <= 0.0)
-      fail ("scan rate (--scan-rate) must be positive");
+    if (c.scan_rate < kMinSimulatedScanRate)
+      fail ("scan rate (--scan-rate) must be at least " + number (kMinSimulatedScanRate) + " Hz, got " +
+            number (c.scan_rate));
+    if (c.ego_speed / c.scan_rate > kMaxSimulatedTravel)
+      fail ("the ego would travel " + number (c.ego_speed / c.scan_rate) + " m between the scans (--speed / "
+            "--scan-rate), more than " + number (kMaxSimulatedTravel) + " m");
   }
   if (c.moving_count < -1)
     fail ("moving object count (--moving) must be >= 0, or -1 for a random count in 1..4");

@@ -630,6 +630,12 @@ TEST (SimulatorConfig, RejectsBadSettings)
   rejects ([] (sim::SimulatorConfig& c) { c.ego_speed = -1.0; });
   rejects ([] (sim::SimulatorConfig& c) { c.travel_min = 3.0, c.travel_max = 2.0; });
   rejects ([] (sim::SimulatorConfig& c) { c.spacing = sim::ScanSpacing::Consecutive, c.scan_rate = 0.0; });
+  // Bounds that keep one pair's time and memory bounded (each used to hang the simulator).
+  rejects ([] (sim::SimulatorConfig& c) { c.laser.beam_count = sim::kMaxSimulatedBeams + 1; });
+  rejects ([] (sim::SimulatorConfig& c) { c.laser.range_max = 1e9; });
+  rejects ([] (sim::SimulatorConfig& c) { c.travel_min = 1e9, c.travel_max = 1e9; });
+  rejects ([] (sim::SimulatorConfig& c) { c.spacing = sim::ScanSpacing::Consecutive, c.scan_rate = 1e-300; });
+  rejects ([] (sim::SimulatorConfig& c) { c.spacing = sim::ScanSpacing::Consecutive, c.ego_speed = 1e9; });
   rejects ([] (sim::SimulatorConfig& c) { c.moving_count = -2; });
   rejects ([] (sim::SimulatorConfig& c) { c.scene = sim::SceneType::Static, c.moving_count = 2; });
   rejects ([] (sim::SimulatorConfig& c) { c.odometry_noise.y () = -0.1; });

@@ -121,6 +121,31 @@ TEST (SimulatorTool, RejectsBadOptions)
   fs::remove_all (dir);
 }
 
+TEST (SimulatorTool, RejectsSizesThatWouldHangIt)
+{
+  // These used to run for minutes with memory growing (or quadratic time for --beams).
+  REQUIRE_SIMULATE_PROGRAM ();
+  const fs::path dir = freshTempDir ("sim_huge_options");
+  const std::string base = quote (program) + " -o " + quote ((dir / "out").string ()) + " ";
+  const std::pair<const char*, const char*> cases[] = {
+      {"--range 1e9", "maximum range (--range) must be in (0, 1000] m, got 1e+09"},
+      {"--travel 1e9,1e9", "MIN <= MAX <= 100 m, got 1e+09,1e+09"},
+      {"--spacing consecutive --scan-rate 1e-300", "scan rate (--scan-rate) must be at least 0.1 Hz, got 1e-300"},
+      {"--spacing consecutive --speed 1e9", "the ego would travel 1.33333e+07 m between the scans"},
+      {"--beams 20001", "--beams must be in 2..20000, got 20001"}};
+  for (const auto& [bad, message] : cases) {
+    std::string output;
+    EXPECT_EQ (run ("timeout 60 " + base + bad, &output), 1) << bad;
+    EXPECT_NE (output.find (message), std::string::npos) << bad << ": " << output;
+  }
+  EXPECT_FALSE (fs::exists (dir / "out"));
+  std::string help;
+  run (quote (program) + " -h", &help);
+  EXPECT_NE (help.find ("2 <= B <= 20000"), std::string::npos) << help;
+  EXPECT_NE (help.find ("(0, 1000]"), std::string::npos) << help;
+  fs::remove_all (dir);
+}
+
 TEST (SimulatorTool, WritesTheLibrarysPairs)
 {
   REQUIRE_SIMULATE_PROGRAM ();

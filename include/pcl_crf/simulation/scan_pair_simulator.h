@@ -30,6 +30,15 @@ enum class ScanSpacing
   Consecutive  ///< one scan period, 1 / scan_rate
 };
 
+/** \brief Bounds of validateSimulatorConfig. They include every real 2D laser
+ *  (180 to ~4000 beams, ranges up to ~300 m, scan rates of 5 to 100 Hz) with a wide
+ *  margin, and keep one pair's simulation time and memory bounded: the cost grows
+ *  with beams times scene objects, and the scene with the ego's travel and the range. */
+constexpr int kMaxSimulatedBeams = 20000;        ///< beams per scan (--beams)
+constexpr double kMaxSimulatedRange = 1000.0;    ///< maximum range [m] (--range)
+constexpr double kMaxSimulatedTravel = 100.0;    ///< ego travel between the scans [m] (--travel, --speed / --scan-rate)
+constexpr double kMinSimulatedScanRate = 0.1;    ///< scan rate [Hz] (--scan-rate)
+
 /** \brief Every setting of the scan-pair simulator, with defaults. */
 struct SimulatorConfig
 {
@@ -44,10 +53,12 @@ struct SimulatorConfig
 
   // ---- time between the scans
   ScanSpacing spacing = ScanSpacing::Travel;
-  /** range of the ego travel between the scans for Travel spacing [m]. */
+  /** range of the ego travel between the scans for Travel spacing [m],
+   *  0 < travel_min <= travel_max <= kMaxSimulatedTravel. */
   double travel_min = 2.0;
   double travel_max = 4.0;
-  /** scan rate for Consecutive spacing [Hz]. */
+  /** scan rate for Consecutive spacing [Hz], >= kMinSimulatedScanRate, and
+   *  ego_speed / scan_rate <= kMaxSimulatedTravel. */
   double scan_rate = 75.0;
 
   // ---- scene
