@@ -4,6 +4,9 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <set>
@@ -14,6 +17,13 @@
 namespace pcl_crf {
 namespace apps {
 
+/** \brief Whether \a arg is written like an option ("-q", "--method"), not a path or value. */
+inline bool
+looksLikeOption (const std::string& arg)
+{
+  return arg.size () > 1 && arg[0] == '-';
+}
+
 /** The arguments that are neither options nor values of options, in order.
  *  \a value_options lists the options that take a value ("--method", ...). */
 inline std::vector<std::string>
@@ -21,7 +31,7 @@ positionalArguments (int argc, char** argv, const std::set<std::string>& value_o
 {
   std::vector<std::string> positional;
   for (int i = 1; i < argc; ++i) {
-    if (argv[i][0] == '-' && std::strlen (argv[i]) > 1) {
+    if (looksLikeOption (argv[i])) {
       if (value_options.count (argv[i]))
         ++i;
       continue;
@@ -29,6 +39,72 @@ positionalArguments (int argc, char** argv, const std::set<std::string>& value_o
     positional.emplace_back (argv[i]);
   }
   return positional;
+}
+
+/** \brief Checks a tool's command line: every argument written like an option must be one
+ *  of \a value_options, followed by its value (an argument that is not itself one of the
+ *  tool's options, so "--yaw-rate -0.1" works), or one of \a switches (-h and --help
+ *  always are). PCL's parse_argument silently skips an unknown option or a missing value.
+ *  \return false after a print_error naming the option and pointing to -h. */
+inline bool
+checkOptions (int argc, char** argv, const std::set<std::string>& value_options,
+              std::set<std::string> switches)
+{
+  switches.insert ({"-h", "--help"});
+  auto known = [&] (const std::string& arg) { return value_options.count (arg) > 0 || switches.count (arg) > 0; };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (value_options.count (arg)) {
+      if (i + 1 >= argc || known (argv[i + 1])) {
+        pcl::console::print_error ("Option %s needs a value (see %s -h).\n", arg.c_str (), argv[0]);
+        return false;
+      }
+      ++i;
+    }
+    else if (looksLikeOption (arg) && !switches.count (arg)) {
+      pcl::console::print_error ("Unknown option '%s' (see %s -h for the options).\n", arg.c_str (), argv[0]);
+      return false;
+    }
+  }
+  return true;
+}
+
+/** Parses "--name VALUE" as a number when present. Returns false (after a
+ *  print_error naming the option) when the value is missing or not a number. */
+inline bool
+numberOption (int argc, char** argv, const char* name, double& value)
+{
+  const int index = pcl::console::find_argument (argc, argv, name);
+  if (index < 0)
+    return true;
+  if (index + 1 >= argc) {
+    pcl::console::print_error ("%s needs a value (see -h).\n", name);
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = std::strtod (argv[index + 1], &end);
+  if (end == argv[index + 1] || *end != '\0' || errno == ERANGE || !std::isfinite (parsed)) {
+    pcl::console::print_error ("%s needs a number, not '%s'.\n", name, argv[index + 1]);
+    return false;
+  }
+  value = parsed;
+  return true;
+}
+
+/** Same as numberOption for a whole number >= \a minimum. */
+inline bool
+countOption (int argc, char** argv, const char* name, long& value, long minimum)
+{
+  double parsed = static_cast<double> (value);
+  if (!numberOption (argc, argv, name, parsed))
+    return false;
+  if (parsed != std::floor (parsed) || parsed < static_cast<double> (minimum) || parsed > 1e12) {
+    pcl::console::print_error ("%s needs a whole number >= %ld, not '%g'.\n", name, minimum, parsed);
+    return false;
+  }
+  value = static_cast<long> (parsed);
+  return true;
 }
 
 /** Splits "a,b,c" into {"a", "b", "c"}, dropping empty parts. */

@@ -74,9 +74,11 @@ printHelp (const char* program)
 bool
 parseArguments (int argc, char** argv, EvalArguments& args)
 {
-  const auto positional = pcl_crf::apps::positionalArguments (
-      argc, argv, {"--method", "--train", "--models", "--format", "--output", "--save-predictions",
-                   "--tolerance", "--max-pairs", "--clusters"});
+  const std::set<std::string> value_options{"--method", "--output", "--save-predictions", "--train", "--models",
+                                            "--format", "--tolerance", "--max-pairs", "--clusters"};
+  if (!pcl_crf::apps::checkOptions (argc, argv, value_options, {"--leave-one-out", "--v-ceiling", "-q"}))
+    return false;
+  const auto positional = pcl_crf::apps::positionalArguments (argc, argv, value_options);
   if (positional.size () > 1)
     return print_error ("Expected one dataset folder, got %zu arguments (see -h).\n", positional.size ()), false;
   if (!positional.empty ())
@@ -89,9 +91,14 @@ parseArguments (int argc, char** argv, EvalArguments& args)
   parse_argument (argc, argv, "--format", args.format);
   parse_argument (argc, argv, "--output", args.output);
   parse_argument (argc, argv, "--save-predictions", args.save_predictions);
-  parse_argument (argc, argv, "--tolerance", args.tolerance);
-  parse_argument (argc, argv, "--max-pairs", args.max_pairs);
-  parse_argument (argc, argv, "--clusters", args.clusters);
+  long max_pairs = 0, clusters = 0;
+  if (!pcl_crf::apps::numberOption (argc, argv, "--tolerance", args.tolerance) ||
+      !pcl_crf::apps::countOption (argc, argv, "--max-pairs", max_pairs, 0) ||
+      !pcl_crf::apps::countOption (argc, argv, "--clusters", clusters, 0))
+    return false;
+  constexpr long kLargeCount = 1000000000L;  // more pairs or clusters than any dataset has points
+  args.max_pairs = static_cast<int> (std::min (max_pairs, kLargeCount));
+  args.clusters = static_cast<int> (std::min (clusters, kLargeCount));
   args.leave_one_out = find_switch (argc, argv, "--leave-one-out");
   args.v_ceiling = find_switch (argc, argv, "--v-ceiling");
   args.quiet = find_switch (argc, argv, "-q");
@@ -103,8 +110,6 @@ parseArguments (int argc, char** argv, EvalArguments& args)
     return print_error ("--format must be table, csv or json, not '%s'.\n", args.format.c_str ()), false;
   if (!(args.tolerance >= 0.0))
     return print_error ("--tolerance must be a non-negative distance in metres.\n"), false;
-  if (args.max_pairs < 0 || args.clusters < 0)
-    return print_error ("--max-pairs and --clusters must not be negative.\n"), false;
   if (args.leave_one_out && (!args.train_dir.empty () || !args.model_dir.empty ()))
     return print_error ("--leave-one-out trains every learned method on the dataset's other pairs: "
                         "drop --train / --models.\n"), false;

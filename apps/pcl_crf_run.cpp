@@ -91,6 +91,8 @@ parseArguments (int argc, char** argv, RunArguments& args)
 {
   std::set<std::string> value_options = pcl_crf::apps::logValueOptions ();
   value_options.insert ({"--method", "--models", "--start", "--max-pairs", "-o", "--csv", "--save-pairs"});
+  if (!pcl_crf::apps::checkOptions (argc, argv, value_options, {"-q", "--stationary", "--label", "--list-methods"}))
+    return false;
   const auto positional = pcl_crf::apps::positionalArguments (argc, argv, value_options);
   if (positional.size () != 1)
     return print_error ("Expected one log file, got %zu arguments (see -h).\n", positional.size ()), false;
@@ -106,9 +108,6 @@ parseArguments (int argc, char** argv, RunArguments& args)
       !pcl_crf::apps::countOption (argc, argv, "--max-pairs", args.max_pairs, 0) ||
       !pcl_crf::apps::parseLogArguments (argc, argv, args.log_args))
     return false;
-  for (const char* option : {"--method", "--models", "-o", "--csv", "--save-pairs"})
-    if (find_argument (argc, argv, option) >= 0 && find_argument (argc, argv, option) + 1 >= argc)
-      return print_error ("%s needs a value (see -h).\n", option), false;
   if (!args.save_pairs.empty ())
     args.log_args.pairs.label_points = true;
   return true;

@@ -35,7 +35,10 @@ main (int argc, char** argv)
 {
   if (const int code = pcl_crf::apps::helpExitCode (argc, argv, printHelp); code >= 0)
     return code;
-  const auto positional = pcl_crf::apps::positionalArguments (argc, argv, {"--method", "-o"});
+  const std::set<std::string> value_options{"--method", "-o"};
+  if (!pcl_crf::apps::checkOptions (argc, argv, value_options, {}))
+    return 1;
+  const auto positional = pcl_crf::apps::positionalArguments (argc, argv, value_options);
   std::string method_name, output;
   parse_argument (argc, argv, "--method", method_name);
   parse_argument (argc, argv, "-o", output);

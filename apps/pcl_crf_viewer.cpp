@@ -87,10 +87,9 @@ parseArguments (int argc, char** argv, ViewerArguments& args)
   std::set<std::string> value_options = pcl_crf::apps::logValueOptions ();
   value_options.insert ({"--pair", "--log", "--scan", "--method", "--models", "--prediction", "--view",
                          "--screenshot", "--size"});
+  if (!pcl_crf::apps::checkOptions (argc, argv, value_options, {"--no-lines", "--label"}))
+    return false;
   const auto positional = pcl_crf::apps::positionalArguments (argc, argv, value_options);
-  for (const char* option : {"--pair", "--log", "--method", "--models", "--prediction", "--view", "--screenshot"})
-    if (find_argument (argc, argv, option) >= 0 && find_argument (argc, argv, option) + 1 >= argc)
-      return print_error ("%s needs a value (see -h).\n", option), false;
   parse_argument (argc, argv, "--log", args.log);
   if (positional.size () > 1 || (positional.size () == 1 && !args.log.empty ()))
     return print_error ("Expected one pair or dataset folder, or --log LOG (see -h).\n"), false;

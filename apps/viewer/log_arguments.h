@@ -8,6 +8,8 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
+#include "../app_common.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -18,44 +20,6 @@
 
 namespace pcl_crf {
 namespace apps {
-
-/** Parses "--name VALUE" as a number when present. Returns false (after a
- *  print_error naming the option) when the value is missing or not a number. */
-inline bool
-numberOption (int argc, char** argv, const char* name, double& value)
-{
-  const int index = pcl::console::find_argument (argc, argv, name);
-  if (index < 0)
-    return true;
-  if (index + 1 >= argc) {
-    pcl::console::print_error ("%s needs a value (see -h).\n", name);
-    return false;
-  }
-  char* end = nullptr;
-  errno = 0;
-  const double parsed = std::strtod (argv[index + 1], &end);
-  if (end == argv[index + 1] || *end != '\0' || errno == ERANGE || !std::isfinite (parsed)) {
-    pcl::console::print_error ("%s needs a number, not '%s'.\n", name, argv[index + 1]);
-    return false;
-  }
-  value = parsed;
-  return true;
-}
-
-/** Same as numberOption for a whole number >= \a minimum. */
-inline bool
-countOption (int argc, char** argv, const char* name, long& value, long minimum)
-{
-  double parsed = static_cast<double> (value);
-  if (!numberOption (argc, argv, name, parsed))
-    return false;
-  if (parsed != std::floor (parsed) || parsed < static_cast<double> (minimum) || parsed > 1e12) {
-    pcl::console::print_error ("%s needs a whole number >= %ld, not '%g'.\n", name, minimum, parsed);
-    return false;
-  }
-  value = static_cast<long> (parsed);
-  return true;
-}
 
 /** Parses "--name A,B,C" into exactly \a count numbers when present. */
 inline bool

@@ -107,6 +107,33 @@ TEST_F (EvalTool, BadArgumentsAndFilesAreClearErrors)
   EXPECT_NE (run.output.find ("pair.txt:1"), std::string::npos) << run.output;
 }
 
+TEST_F (EvalTool, UnknownOptionsAndMissingValuesAreErrors)
+{
+  // PCL's parse_argument skips both silently: "--bogus" and a bare "--tolerance" used to run
+  // with the defaults.
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  const std::string set = (dir_ / "set").string ();
+  const struct
+  {
+    std::string tool, arguments, message;
+  } cases[] = {
+      {"pcl_crf_eval", set + " --bogus", "Unknown option '--bogus' (see "},
+      {"pcl_crf_eval", set + " -x -q", "Unknown option '-x'"},
+      {"pcl_crf_eval", set + " --tolerance", "Option --tolerance needs a value (see "},
+      {"pcl_crf_eval", set + " --method --tolerance 0.2", "Option --method needs a value"},
+      {"pcl_crf_eval", set + " --tolerance abc", "--tolerance needs a number, not 'abc'"},
+      {"pcl_crf_eval", set + " --max-pairs 1.5", "--max-pairs needs a whole number >= 0"},
+      {"pcl_crf_train", set + " --method crf-t -o " + (dir_ / "m").string () + " --bogus", "Unknown option '--bogus'"},
+      {"pcl_crf_train", set + " -o " + (dir_ / "m").string () + " --method", "Option --method needs a value"},
+  };
+  for (const auto& c : cases) {
+    const auto run = runTool (c.tool, c.arguments);
+    EXPECT_EQ (run.exit_code, 1) << c.tool << " " << c.arguments << "\n" << run.output;
+    EXPECT_NE (run.output.find (c.message), std::string::npos) << c.arguments << "\n" << run.output;
+  }
+  EXPECT_FALSE (fs::exists (dir_ / "m"));
+}
+
 TEST_F (EvalTool, TrainToolRejectsMethodsWithoutModels)
 {
   PCL_CRF_SKIP_WITHOUT_APPS ();

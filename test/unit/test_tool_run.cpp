@@ -196,6 +196,8 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
       {log () + " --min-range 5 --max-range 1", "0 <= min < max"},
       {log () + " extra", "Expected one log file, got 2"},
       {log () + " -o", "-o needs a value"},
+      {log () + " --bogus", "Unknown option '--bogus' (see "},
+      {log () + " --csv --method icp", "Option --csv needs a value"},
       {log () + " --stationary", "has reference poses: give one or the other"},
   };
   for (const auto& c : cases) {

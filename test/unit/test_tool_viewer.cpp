@@ -236,6 +236,8 @@ TEST_F (ToolViewer, HelpAndErrors)
       {set + " --prediction " + (dir_ / "nothing").string () + " --screenshot a.png", "no saved result"},
       {"--log " + (dir_ / "missing.log").string () + " --screenshot a.png", "cannot open"},
       {set + " --log x.log", "Expected one pair or dataset folder, or --log LOG"},
+      {set + " --bogus --screenshot a.png", "Unknown option '--bogus' (see "},
+      {set + " --screenshot a.png --method", "Option --method needs a value"},
   };
   for (const auto& c : cases) {
     run = runTool ("pcl_crf_viewer", c.arguments);
