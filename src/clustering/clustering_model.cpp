@@ -67,15 +67,19 @@ void
 checkHeader (const std::string& text, const std::string& where)
 {
   std::istringstream words (text);
-  std::string magic;
-  int version = 0;
-  words >> magic >> version;
+  std::string magic, version, extra;
+  words >> magic;
   if (magic != kMagic)
     fail (where, 1, "not a CRF-Clustering model (expected first line '" + std::string (kMagic) + " " +
                         std::to_string (kModelVersion) + "')");
-  if (version != kModelVersion)
-    fail (where, 1, "model version " + std::to_string (version) + " is not supported (this build reads " +
+  // The version is one exact integer token: "1abc", "1.9", "1e9" are not version 1.
+  if (!(words >> version))
+    fail (where, 1, "missing model version after '" + std::string (kMagic) + "'");
+  if (version != std::to_string (kModelVersion))
+    fail (where, 1, "model version " + version + " is not supported (this build reads " +
                         std::to_string (kModelVersion) + ")");
+  if (words >> extra)
+    fail (where, 1, "unexpected text '" + extra + "' after the model version");
 }
 
 }  // namespace

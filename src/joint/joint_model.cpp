@@ -122,13 +122,16 @@ JointModel
 readJointModel (std::istream& is, const std::string& name)
 {
   std::istringstream header (nextLine (is, name, "the header"));
-  std::string magic;
-  int version = 0;
-  if (!(header >> magic >> version) || magic != kMagic)
+  std::string magic, version, extra;
+  if (!(header >> magic) || magic != kMagic)
     fail (name, std::string ("not a joint model (expected '") + kMagic + " " + std::to_string (kJointModelVersion) + "')");
-  if (version != kJointModelVersion)
-    fail (name, "version " + std::to_string (version) + " is not supported (expected " +
-                    std::to_string (kJointModelVersion) + ")");
+  // The version is one exact integer token: "1abc", "1.9", "1e9" are not version 1.
+  if (!(header >> version))
+    fail (name, std::string ("missing version after '") + kMagic + "'");
+  if (version != std::to_string (kJointModelVersion))
+    fail (name, "version " + version + " is not supported (expected " + std::to_string (kJointModelVersion) + ")");
+  if (header >> extra)
+    fail (name, "unexpected text '" + extra + "' after the version in the header");
   JointModel model;
   model.prior_sigma = readEntry (is, name, "prior_sigma");
   const double min_points = readEntry (is, name, "min_cluster_points");

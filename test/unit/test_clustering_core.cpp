@@ -213,4 +213,30 @@ TEST (ClusteringModel, RoundTripsAndRejectsBrokenFiles)
   EXPECT_THROW (loadModel ("/nonexistent/crf-t.model"), std::runtime_error);
 }
 
+TEST (ClusteringModel, VersionIsOneExactIntegerToken)
+{
+  // "1abc", "1.9" and "1e9" used to read as version 1; trailing words were ignored.
+  CrfClusteringModel model;
+  std::stringstream text;
+  writeModel (text, model);
+  const std::string good = text.str ();
+  const std::string header = good.substr (0, good.find ('\n'));
+  ASSERT_EQ (header.substr (header.size () - 2), " 1");
+  const std::string magic = header.substr (0, header.size () - 2);
+  const std::pair<std::string, std::string> cases[] = {
+      {" 1abc", "model version 1abc is not supported"}, {" 1.9", "model version 1.9 is not supported"},
+      {" 1e9", "model version 1e9 is not supported"},   {"", "missing model version"},
+      {" 1 junk", "unexpected text 'junk' after the model version"}};
+  for (const auto& [version, message] : cases) {
+    std::istringstream in (magic + version + good.substr (header.size ()));
+    try {
+      readModel (in, "broken.model");
+      ADD_FAILURE () << "accepted version '" << version << "'";
+    }
+    catch (const std::runtime_error& error) {
+      EXPECT_NE (std::string (error.what ()).find (message), std::string::npos) << error.what ();
+    }
+  }
+}
+
 }  // namespace

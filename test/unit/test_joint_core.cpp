@@ -246,6 +246,29 @@ TEST (JointModelFile, RejectsCorruptText)
   EXPECT_THROW (joint::loadJointModel ("/nonexistent/joint.model"), std::runtime_error);
 }
 
+TEST (JointModelFile, VersionIsOneExactIntegerToken)
+{
+  // "1abc", "1.9" and "1e9" used to read as version 1 (operator>> stops at the first
+  // character that is not a digit); trailing words were ignored.
+  const std::pair<const char*, const char*> cases[] = {
+      {"pcl_crf_joint_model 1abc\n", "version 1abc is not supported (expected 1)"},
+      {"pcl_crf_joint_model 1.9\n", "version 1.9 is not supported"},
+      {"pcl_crf_joint_model 1e9\n", "version 1e9 is not supported"},
+      {"pcl_crf_joint_model +1\n", "version +1 is not supported"},
+      {"pcl_crf_joint_model\n", "missing version"},
+      {"pcl_crf_joint_model 1 junk\n", "unexpected text 'junk' after the version"}};
+  for (const auto& [text, message] : cases) {
+    std::istringstream in (text);
+    try {
+      joint::readJointModel (in, "j.model");
+      ADD_FAILURE () << "accepted " << text;
+    }
+    catch (const std::runtime_error& error) {
+      EXPECT_NE (std::string (error.what ()).find (message), std::string::npos) << error.what ();
+    }
+  }
+}
+
 }  // namespace
 
 namespace pcl_crf {
