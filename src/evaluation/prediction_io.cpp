@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -46,13 +47,124 @@ writePredictionCloud (const ScanPair& pair, const Prediction& prediction, const 
     throw DatasetError (path + ": cannot write");
 }
 
+[[noreturn]] void
+fail (const std::string& where, const std::string& what)
+{
+  throw DatasetError (where + ": " + what);
+}
+
+/** \brief Fails unless \a in has nothing left on its line. */
+void
+expectEnd (std::istringstream& in, const std::string& where)
+{
+  std::string extra;
+  if (in >> extra)
+    fail (where, "unexpected trailing value '" + extra + "'");
+}
+
 Rigid2d
 readXYTheta (std::istringstream& in, const std::string& where)
 {
   double x, y, theta;
   if (!(in >> x >> y >> theta) || !std::isfinite (x) || !std::isfinite (y) || !std::isfinite (theta))
-    throw DatasetError (where + ": expected three finite numbers x y theta");
+    fail (where, "expected three finite numbers x y theta");
+  expectEnd (in, where);
   return makeRigid2d (x, y, theta);
+}
+
+/** \brief A "0" or "1" token (has_match, has_cluster). */
+bool
+readFlag (std::istringstream& in, const std::string& key, const std::string& where)
+{
+  std::string token;
+  in >> token;
+  if (token != "0" && token != "1")
+    fail (where, "'" + key + "' must be 0 or 1, got '" + token + "'");
+  expectEnd (in, where);
+  return token == "1";
+}
+
+/** \brief One "cluster K static|moving x y theta" line; clusters come in order 0, 1, 2, ... */
+void
+readCluster (std::istringstream& in, const std::string& where, Prediction& prediction)
+{
+  std::string index, kind;
+  in >> index >> kind;
+  if (index != std::to_string (prediction.cluster_motions.size ()))
+    fail (where, "clusters must be listed in order 0, 1, 2, ... (expected cluster " +
+                     std::to_string (prediction.cluster_motions.size ()) + ", got '" + index + "')");
+  if (kind != "static" && kind != "moving")
+    fail (where, "cluster kind must be 'static' or 'moving', got '" + kind + "'");
+  if (kind == "static" && prediction.static_cluster >= 0)
+    fail (where, "a second static cluster (cluster " + std::to_string (prediction.static_cluster) +
+                     " is already static)");
+  if (kind == "static")
+    prediction.static_cluster = static_cast<int> (prediction.cluster_motions.size ());
+  prediction.cluster_motions.push_back (readXYTheta (in, where));
+}
+
+/** \brief What prediction.txt says besides the per-point labels. */
+struct PredictionText
+{
+  Prediction prediction;
+  bool has_match = false;
+  bool has_cluster = false;
+};
+
+/** \brief Reads prediction.txt strictly: the header first, every key savePrediction
+ *  writes exactly once (clusters any number of times), nothing else. */
+PredictionText
+readPredictionText (const std::string& path)
+{
+  std::ifstream file (path);
+  if (!file)
+    throw DatasetError (path + ": cannot open");
+  PredictionText text;
+  std::set<std::string> seen;
+  std::string line;
+  int line_number = 0;
+  while (std::getline (file, line)) {
+    ++line_number;
+    std::istringstream in (line);
+    std::string key, word;
+    in >> key;
+    const std::string where = path + ":" + std::to_string (line_number);
+    if (line_number == 1) {
+      in >> word;
+      if (key != kMagic || word != "1")
+        fail (where, "expected the header '" + std::string (kMagic) + " 1', got '" + line + "'");
+      expectEnd (in, where);
+      continue;
+    }
+    if (key != "cluster" && !seen.insert (key).second)
+      fail (where, "'" + key + "' appears twice");
+    if (key == "ego")
+      text.prediction.T_source_target = readXYTheta (in, where);
+    else if (key == "cluster")
+      readCluster (in, where, text.prediction);
+    else if (key == "has_match")
+      text.has_match = readFlag (in, key, where);
+    else if (key == "has_cluster")
+      text.has_cluster = readFlag (in, key, where);
+    else if (key == "seconds") {
+      if (!(in >> text.prediction.seconds) || !std::isfinite (text.prediction.seconds) ||
+          text.prediction.seconds < 0.0)
+        fail (where, "'seconds' needs a finite time >= 0");
+      expectEnd (in, where);
+    }
+    else if (key == "method" || key == "pair") {  // the rest of the line: a folder name may hold spaces
+      if (!(in >> word))
+        fail (where, "'" + key + "' needs a name");
+    }
+    else
+      fail (where, "unknown key '" + key + "'");
+  }
+  if (line_number == 0)
+    fail (path, "empty file (expected the header '" + std::string (kMagic) + " 1')");
+  for (const char* key : {"method", "pair", "has_match", "has_cluster", "ego", "seconds"})
+    if (!seen.count (key))
+      fail (path, std::string ("missing '") + key + "' line");
+  return text;
 }
 
 }  // namespace
@@ -85,48 +197,25 @@ savePrediction (const ScanPair& pair, const Prediction& prediction, const std::s
 Prediction
 loadPrediction (const std::string& dir)
 {
-  const std::string text_path = (fs::path (dir) / "prediction.txt").string ();
-  std::ifstream file (text_path);
-  if (!file)
-    throw DatasetError (text_path + ": cannot open");
-  Prediction prediction;
-  bool has_match = false, has_cluster = false;
-  std::string line;
-  int line_number = 0;
-  while (std::getline (file, line)) {
-    ++line_number;
-    std::istringstream in (line);
-    std::string key;
-    in >> key;
-    const std::string where = text_path + ":" + std::to_string (line_number);
-    if (key == "ego")
-      prediction.T_source_target = readXYTheta (in, where);
-    else if (key == "cluster") {
-      std::size_t index;
-      std::string kind;
-      in >> index >> kind;
-      if (index != prediction.cluster_motions.size ())
-        throw DatasetError (where + ": clusters must be listed in order 0, 1, 2, ...");
-      if (kind == "static")
-        prediction.static_cluster = static_cast<int> (index);
-      prediction.cluster_motions.push_back (readXYTheta (in, where));
-    }
-    else if (key == "has_match")
-      in >> has_match;
-    else if (key == "has_cluster")
-      in >> has_cluster;
-    else if (key == "seconds")
-      in >> prediction.seconds;
-  }
+  PredictionText text = readPredictionText ((fs::path (dir) / "prediction.txt").string ());
+  Prediction& prediction = text.prediction;
   const std::string cloud_path = (fs::path (dir) / "prediction.pcd").string ();
   pcl::PointCloud<PointXYZClusterMatch> cloud;
   pcl::fromPCLPointCloud2 (detail::readPcdBlob (
       cloud_path, {{"x", pcl::PCLPointField::FLOAT32}, {"y", pcl::PCLPointField::FLOAT32},
                    {"cluster", pcl::PCLPointField::INT32}, {"match", pcl::PCLPointField::INT32}}), cloud);
-  for (const auto& point : cloud) {
-    if (has_match)
+  const int clusters = static_cast<int> (prediction.cluster_motions.size ());
+  for (std::size_t i = 0; i < cloud.size (); ++i) {
+    const PointXYZClusterMatch& point = cloud[i];
+    if (text.has_cluster && (point.cluster < kOutlierCluster || point.cluster >= clusters))
+      fail (cloud_path, "point " + std::to_string (i) + " has cluster " + std::to_string (point.cluster) +
+                            ", out of range [0, " + std::to_string (clusters) + ") and not -1");
+    if (text.has_match && point.match < kNoMatch)
+      fail (cloud_path, "point " + std::to_string (i) + " has match " + std::to_string (point.match) +
+                            ", negative and not -1");
+    if (text.has_match)
       prediction.source_match.push_back (point.match);
-    if (has_cluster)
+    if (text.has_cluster)
       prediction.source_cluster.push_back (point.cluster);
   }
   return prediction;

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -123,6 +125,56 @@ TEST (Evaluation, PredictionRoundTripsThroughFiles)
                     pcl_crf::scorePair (pair, prediction).association_accuracy);
   fs::remove (dir / "prediction.pcd");
   EXPECT_THROW (pcl_crf::loadPrediction (dir.string ()), pcl_crf::DatasetError);
+  fs::remove_all (dir);
+}
+
+/** \brief The text of \a file with the first \a from replaced by \a to. */
+void
+replaceInFile (const fs::path& file, const std::string& from, const std::string& to)
+{
+  std::ifstream in (file);
+  std::stringstream buffer;
+  buffer << in.rdbuf ();
+  std::string text = buffer.str ();
+  const auto at = text.find (from);
+  ASSERT_NE (at, std::string::npos) << from << " not in " << file;
+  text.replace (at, from.size (), to);
+  std::ofstream (file) << text;
+}
+
+TEST (Evaluation, LoadPredictionIsStrict)
+{
+  // An empty prediction.txt, any version and out-of-range labels used to load.
+  const auto pair = pcl_crf::test::staticRoomPair (pcl_crf::makeRigid2d (0.2, 0.1, 0.05));
+  OracleMethod oracle;
+  const pcl_crf::Prediction prediction = oracle.predict (pair);
+  const fs::path dir = fs::temp_directory_path () / "pcl_crf_prediction_strict";
+  const fs::path text = dir / "prediction.txt", cloud = dir / "prediction.pcd";
+  const std::pair<std::function<void ()>, std::string> cases[] = {
+      {[&] { std::ofstream (text, std::ios::trunc); }, "prediction.txt: empty file"},
+      {[&] { replaceInFile (text, "pcl_crf_prediction 1", "pcl_crf_prediction 2"); }, "expected the header"},
+      {[&] { replaceInFile (text, "pcl_crf_prediction 1", "pcl_crf_prediction 1abc"); }, "expected the header"},
+      {[&] { replaceInFile (text, "has_match 1", "has_match 7"); }, "'has_match' must be 0 or 1, got '7'"},
+      {[&] { replaceInFile (text, "has_cluster 1\n", ""); }, "missing 'has_cluster' line"},
+      {[&] { replaceInFile (text, "seconds", "second"); }, "unknown key 'second'"},
+      {[&] { replaceInFile (text, "cluster 0 static", "cluster 1 static"); }, "expected cluster 0, got '1'"},
+      {[&] { replaceInFile (cloud, " 0 -1\n", " 5 -1\n"); }, "has cluster 5, out of range [0, 1) and not -1"},
+      {[&] { replaceInFile (cloud, " 0 -1\n", " 0 -7\n"); }, "has match -7, negative and not -1"},
+  };
+  for (const auto& [corrupt, message] : cases) {
+    fs::remove_all (dir);
+    pcl_crf::Prediction saved = prediction;
+    saved.source_match[3] = pcl_crf::kNoMatch;
+    pcl_crf::savePrediction (pair, saved, "oracle", dir.string ());
+    corrupt ();
+    try {
+      pcl_crf::loadPrediction (dir.string ());
+      ADD_FAILURE () << "accepted a prediction corrupted for: " << message;
+    }
+    catch (const pcl_crf::DatasetError& error) {
+      EXPECT_NE (std::string (error.what ()).find (message), std::string::npos) << error.what ();
+    }
+  }
   fs::remove_all (dir);
 }
 
