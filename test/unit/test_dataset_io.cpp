@@ -1,5 +1,7 @@
 #include <pcl_crf/io/dataset_io.h>
 
+#include "file_edits.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,6 +10,7 @@
 #include <sstream>
 
 namespace fs = std::filesystem;
+using pcl_crf::test::replaceInFile;
 using pcl_crf::DatasetError;
 using pcl_crf::ScanPair;
 
@@ -58,18 +61,6 @@ protected:
     return (dir_ / "pair_0000").string ();
   }
 
-  static void
-  replaceInFile (const fs::path& file, const std::string& from, const std::string& to)
-  {
-    std::ifstream in (file);
-    std::stringstream buffer;
-    buffer << in.rdbuf ();
-    std::string text = buffer.str ();
-    const auto at = text.find (from);
-    ASSERT_NE (at, std::string::npos) << from << " not in " << file;
-    text.replace (at, from.size (), to);
-    std::ofstream (file) << text;
-  }
 
   void
   expectLoadError (const std::string& pair_dir, const std::string& fragment)

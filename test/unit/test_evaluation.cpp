@@ -3,6 +3,7 @@
 #include <pcl_crf/evaluation/report.h>
 #include <pcl_crf/io/dataset_io.h>
 
+#include "file_edits.h"
 #include "synthetic_scene.h"
 
 #include <gtest/gtest.h>
@@ -128,19 +129,7 @@ TEST (Evaluation, PredictionRoundTripsThroughFiles)
   fs::remove_all (dir);
 }
 
-/** \brief The text of \a file with the first \a from replaced by \a to. */
-void
-replaceInFile (const fs::path& file, const std::string& from, const std::string& to)
-{
-  std::ifstream in (file);
-  std::stringstream buffer;
-  buffer << in.rdbuf ();
-  std::string text = buffer.str ();
-  const auto at = text.find (from);
-  ASSERT_NE (at, std::string::npos) << from << " not in " << file;
-  text.replace (at, from.size (), to);
-  std::ofstream (file) << text;
-}
+using pcl_crf::test::replaceInFile;
 
 TEST (Evaluation, LoadPredictionIsStrict)
 {
