@@ -31,6 +31,29 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullp
   return xy;
 }
 
+/** \brief Copies the (x, y) of the points of \a cloud at \a indices, in that order, into a
+ *  2 x N matrix. Points with a non-finite x or y are skipped; \a kept receives the cloud
+ *  index of every column. Every index must be a point of the cloud (firstIndexOutside).
+ */
+template <typename PointT, typename Index> Eigen::Matrix2Xd
+toMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indices, std::vector<int>* kept = nullptr)
+{
+  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (indices.size ()));
+  Eigen::Index n = 0;
+  if (kept)
+    kept->clear ();
+  for (const Index index : indices) {
+    const PointT& p = cloud[static_cast<std::size_t> (index)];
+    if (!std::isfinite (p.x) || !std::isfinite (p.y))
+      continue;
+    xy.col (n++) << p.x, p.y;
+    if (kept)
+      kept->push_back (static_cast<int> (index));
+  }
+  xy.conservativeResize (2, n);
+  return xy;
+}
+
 /** \brief The position in \a indices of the first index outside a cloud of \a size
  *  points (negative or too large), or -1 when every index is a point of the cloud. */
 template <typename Index> long

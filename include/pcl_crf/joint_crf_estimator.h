@@ -82,6 +82,19 @@ public:
   void
   setGuessCovariance (const Eigen::Matrix3d& covariance) { guess_covariance_ = covariance; }
 
+  /** \brief pcl::Registration::align with the identity guess (see the overload below). */
+  void
+  align (PointCloudSource& output);
+
+  /** \brief pcl::Registration::align, after checking that every index given with
+   *  setIndices () is a point of the source cloud: PCL's align copies the indexed
+   *  points before any estimator runs, and would read past the cloud. An index outside
+   *  it gives PCL_ERROR naming it, no result and hasConverged () == false. Only the
+   *  indexed points are estimated (in their order, which must be the beam order), and
+   *  \a output holds them moved by the static world's motion. */
+  void
+  align (PointCloudSource& output, const Matrix4& guess);
+
   /** \brief The associations of the last align() (see joint::JointResult::source_match):
    *  (source index, target index, squared distance after the static motion). Outliers
    *  have none. */
@@ -105,7 +118,7 @@ public:
   getOutliers () const { return outliers_; }
 
   /** \brief Everything the last align() found, in the core's frame-explicit form
-   *  (indices into the finite points of the source cloud). */
+   *  (indices into the finite indexed points of the source cloud, in index order). */
   const joint::JointResult&
   getResult () const { return result_; }
 
@@ -114,7 +127,9 @@ protected:
   computeTransformation (PointCloudSource& output, const Matrix4& guess) override;
 
   using Base::converged_;
+  using Base::fake_indices_;
   using Base::final_transformation_;
+  using Base::indices_;
   using Base::input_;
   using Base::reg_name_;
   using Base::target_;
@@ -123,6 +138,9 @@ protected:
 private:
   void
   clearResults ();
+  /** The indexed source points (every point without setIndices ()) moved by \a T. */
+  void
+  moveSource (const Matrix4& T, PointCloudSource& output) const;
   void
   storeResults (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<int>& source_index,
                 const std::vector<int>& target_index);

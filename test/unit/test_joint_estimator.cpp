@@ -674,4 +674,90 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   EXPECT_TRUE (estimator.hasConverged ());
 }
 
+TEST (JointCRFEstimator, EstimatesOnlyTheIndexedSourcePoints)
+{
+  // setIndices restricts the source to those points, as in every PCL registration:
+  // the result is estimateJoint's on them, reported with cloud indices.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  auto source = toCloud (pair.source);
+  pcl::IndicesPtr indices (new pcl::Indices);
+  for (int i = 20; i < static_cast<int> (source->size ()) - 20; ++i)  // both ends cut off
+    indices->push_back (i);
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  estimator.setModel (shippedModel ());
+  estimator.setInputSource (source);
+  estimator.setIndices (indices);
+  estimator.setInputTarget (toCloud (pair.target));
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+  EXPECT_EQ (aligned.size (), indices->size ());
+  const Eigen::Matrix4f T = estimator.getFinalTransformation ();
+  const Eigen::Vector4f moved = T * (*source)[20].getVector4fMap ();
+  EXPECT_NEAR (aligned[0].x, moved.x (), 1e-5);
+  EXPECT_NEAR (aligned[0].y, moved.y (), 1e-5);
+
+  Odometry as_given = pair.odometry;  // what the adapter sees: float points and odometry
+  as_given.T_source_target = toRigid2d (odometry);
+  const Eigen::Matrix2Xd cut = pair.source.middleCols (20, static_cast<Eigen::Index> (indices->size ()));
+  const joint::JointResult direct = joint::estimateJoint (cut.cast<float> ().cast<double> (),
+                                                          pair.target.cast<float> ().cast<double> (), as_given,
+                                                          shippedModel ());
+  const pcl::Correspondences& found = estimator.getCorrespondences ();
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < direct.source_match.size (); ++i) {
+    if (direct.source_match[i] == kNoMatch)
+      continue;
+    ASSERT_LT (k, found.size ());
+    EXPECT_EQ (found[k].index_query, static_cast<int> (i) + 20);
+    EXPECT_EQ (found[k].index_match, direct.source_match[i]);
+    ++k;
+  }
+  EXPECT_EQ (k, found.size ());
+  const auto& clusters = estimator.getClusters ();
+  ASSERT_EQ (clusters.size (), direct.cluster_motions.size ());
+  std::size_t total = estimator.getOutliers ().size ();
+  for (std::size_t l = 0; l < clusters.size (); ++l) {
+    EXPECT_EQ (clusters[l].indices.size (), static_cast<std::size_t> (direct.cluster_sizes[l]));
+    total += clusters[l].indices.size ();
+    for (int index : clusters[l].indices) {
+      EXPECT_GE (index, 20);
+      EXPECT_LT (index, static_cast<int> (source->size ()) - 20);
+    }
+  }
+  EXPECT_EQ (total, indices->size ());
+}
+
+TEST (JointCRFEstimator, ReportsSourceIndicesOutsideTheCloudWithoutCrashing)
+{
+  // PCL's Registration::align copies the indexed points before any estimator runs:
+  // an index past the cloud used to read past it (a crash).
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  auto source = toCloud (pair.source);
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  estimator.setModel (shippedModel ());
+  estimator.setInputSource (source);
+  estimator.setInputTarget (toCloud (pair.target));
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+  for (const int bad : {static_cast<int> (source->size ()), 1000000000, -1}) {
+    pcl::IndicesPtr indices (new pcl::Indices{0, 1, 2, bad, 4});
+    estimator.setIndices (indices);
+    estimator.align (aligned);
+    EXPECT_FALSE (estimator.hasConverged ()) << bad;
+    EXPECT_TRUE (estimator.getClusters ().empty ()) << bad;
+    EXPECT_TRUE (estimator.getCorrespondences ().empty ()) << bad;
+  }
+  pcl::IndicesPtr all (new pcl::Indices (source->size ()));
+  for (std::size_t i = 0; i < all->size (); ++i)
+    (*all)[i] = static_cast<int> (i);
+  estimator.setIndices (all);  // every point again
+  estimator.align (aligned);
+  EXPECT_TRUE (estimator.hasConverged ());
+  EXPECT_EQ (aligned.size (), source->size ());
+}
+
 }  // namespace

@@ -74,13 +74,47 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::moveSource (const Matrix4& T, PointCloudSource& output) const
+{
+  if (fake_indices_)  // every point: keeps an organised cloud's width and height
+    pcl::transformPointCloud (*input_, output, T);
+  else
+    pcl::transformPointCloud (*input_, *indices_, output, T);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::align (PointCloudSource& output)
+{
+  align (output, Matrix4::Identity ());
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
+JointCRFEstimator<PointSource, PointTarget, Scalar>::align (PointCloudSource& output, const Matrix4& guess)
+{
+  // Indices given with setIndices () (not PCL's own "every point") are checked here:
+  // Base::align copies the points they name before computeTransformation runs.
+  if (input_ && indices_ && !fake_indices_) {
+    const long outside = firstIndexOutside (*indices_, input_->size ());
+    if (outside >= 0) {
+      PCL_ERROR ("[pcl_crf::%s::align] Source index %d (position %ld of the indices) is not a point of the %zu-point "
+                 "source cloud.\n",
+                 reg_name_.c_str (), static_cast<int> ((*indices_)[outside]), outside, input_->size ());
+      clearResults ();
+      converged_ = false;
+      return;
+    }
+  }
+  Base::align (output, guess);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (PointCloudSource& output,
                                                                            const Matrix4& guess)
 {
   clearResults ();
   converged_ = false;
   std::vector<int> source_index, target_index;
-  const Eigen::Matrix2Xd source = toMatrix2X (*input_, &source_index);
+  const Eigen::Matrix2Xd source = toMatrix2X (*input_, *indices_, &source_index);  // the indexed points
   const Eigen::Matrix2Xd target = toMatrix2X (*target_, &target_index);
   Odometry odometry = odometry_;
   if (!has_odometry_) {
@@ -92,14 +126,14 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   }
   catch (const std::exception& error) {
     PCL_ERROR ("[pcl_crf::%s::computeTransformation] %s\n", reg_name_.c_str (), error.what ());
-    pcl::transformPointCloud (*input_, output, guess);
+    moveSource (guess, output);
     final_transformation_ = transformation_ = guess;
     return;
   }
   if (result_.static_cluster >= 0)
     storeResults (source, target, source_index, target_index);
   final_transformation_ = transformation_ = toMatrix4<Scalar> (result_.T_source_target.inverse ());
-  pcl::transformPointCloud (*input_, output, final_transformation_);
+  moveSource (final_transformation_, output);
   converged_ = result_.static_cluster >= 0;
 }
 
