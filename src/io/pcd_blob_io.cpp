@@ -5,7 +5,13 @@
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace pcl_crf {
 namespace detail {
@@ -22,18 +28,112 @@ describeLayout (int datatype, std::uint32_t count)
          std::to_string (count);
 }
 
-/** \brief Checks that \a blob's header declares \a field with its datatype and COUNT 1. */
-void
+/** \brief Checks that \a blob's header declares \a field, COUNT 1, of a numeric type PCL
+ *  knows. \return the field's index in \a blob. */
+int
 checkField (const pcl::PCLPointCloud2& blob, const PcdField& field, const std::string& path)
 {
   const int index = pcl::getFieldIndex (blob, field.name);
   if (index < 0)
     throw DatasetError (path + ": missing field '" + field.name + "'");
   const pcl::PCLPointField& found = blob.fields[index];
-  if (found.datatype != field.datatype || found.count != 1)
-    throw DatasetError (path + ": field '" + field.name + "' must be " +
-                        describeLayout (field.datatype, 1) + ", found " +
+  if (found.count != 1 || pcl::getFieldSize (found.datatype) == 0)
+    throw DatasetError (path + ": field '" + field.name + "' must be " + describeLayout (field.datatype, 1) +
+                        " (or another TYPE and SIZE of COUNT 1), found " +
                         describeLayout (found.datatype, found.count));
+  return index;
+}
+
+template <typename T> double
+valueAt (const std::uint8_t* at)
+{
+  T value;
+  std::memcpy (&value, at, sizeof (T));
+  return static_cast<double> (value);
+}
+
+/** \brief The number stored at \a at as \a datatype (any PCD TYPE and SIZE). */
+double
+valueAt (const std::uint8_t* at, std::uint8_t datatype)
+{
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: return valueAt<std::int8_t> (at);
+    case pcl::PCLPointField::UINT8: return valueAt<std::uint8_t> (at);
+    case pcl::PCLPointField::INT16: return valueAt<std::int16_t> (at);
+    case pcl::PCLPointField::UINT16: return valueAt<std::uint16_t> (at);
+    case pcl::PCLPointField::INT32: return valueAt<std::int32_t> (at);
+    case pcl::PCLPointField::UINT32: return valueAt<std::uint32_t> (at);
+    case pcl::PCLPointField::INT64: return valueAt<std::int64_t> (at);
+    case pcl::PCLPointField::UINT64: return valueAt<std::uint64_t> (at);
+    case pcl::PCLPointField::FLOAT32: return valueAt<float> (at);
+    case pcl::PCLPointField::FLOAT64: return valueAt<double> (at);
+    default: return valueAt<std::uint8_t> (at);  // BOOL, the one type left that PCL gives a size
+  }
+}
+
+template <typename T> void
+storeAs (double value, std::uint8_t* at)
+{
+  const T stored = static_cast<T> (value);
+  std::memcpy (at, &stored, sizeof (T));
+}
+
+/** \brief Stores \a value as the field \a field expects: a float, or a whole number
+ *  in the range of its integer type (\throws DatasetError naming the point otherwise). */
+void
+storeValue (double value, const PcdField& field, std::size_t point, const std::string& path, std::uint8_t* at)
+{
+  if (field.datatype == pcl::PCLPointField::FLOAT32) {
+    storeAs<float> (value, at);  // a NaN or an overflow is reported with the coordinates
+    return;
+  }
+  const bool is_signed = field.datatype == pcl::PCLPointField::INT32;
+  const double lowest = is_signed ? std::numeric_limits<std::int32_t>::lowest () : 0.0;
+  const double highest = is_signed ? std::numeric_limits<std::int32_t>::max () : std::numeric_limits<std::uint32_t>::max ();
+  if (!(value >= lowest && value <= highest) || value != std::floor (value)) {
+    std::ostringstream what;
+    what << std::setprecision (17) << path << ": point " << point << " has " << field.name << " " << value
+         << ", not a whole number in [" << lowest << ", " << highest << "] (" << describeLayout (field.datatype, 1)
+         << ")";
+    throw DatasetError (what.str ());
+  }
+  if (is_signed)
+    storeAs<std::int32_t> (value, at);
+  else
+    storeAs<std::uint32_t> (value, at);
+}
+
+/** \brief A copy of \a blob holding only \a fields, each converted to its expected
+ *  datatype (a PCD writer may store x as float64 or a label as int32). */
+pcl::PCLPointCloud2
+convertFields (const pcl::PCLPointCloud2& blob, const std::vector<PcdField>& fields, const std::string& path)
+{
+  pcl::PCLPointCloud2 converted;
+  converted.header = blob.header;
+  converted.width = blob.width;
+  converted.height = blob.height;
+  converted.is_bigendian = blob.is_bigendian;
+  converted.is_dense = blob.is_dense;
+  for (const PcdField& field : fields) {
+    pcl::PCLPointField out;
+    out.name = field.name;
+    out.offset = converted.point_step;
+    out.datatype = field.datatype;
+    out.count = 1;
+    converted.fields.push_back (out);
+    converted.point_step += static_cast<std::uint32_t> (pcl::getFieldSize (field.datatype));
+  }
+  const std::size_t points = static_cast<std::size_t> (blob.width) * blob.height;
+  converted.row_step = converted.point_step * converted.width;
+  converted.data.resize (points * converted.point_step);
+  for (std::size_t k = 0; k < fields.size (); ++k) {
+    const pcl::PCLPointField& in = blob.fields[pcl::getFieldIndex (blob, fields[k].name)];
+    for (std::size_t i = 0; i < points; ++i) {
+      const double value = valueAt (&blob.data[i * blob.point_step + in.offset], in.datatype);
+      storeValue (value, fields[k], i, path, &converted.data[i * converted.point_step + converted.fields[k].offset]);
+    }
+  }
+  return converted;
 }
 
 }  // namespace
@@ -54,11 +154,19 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
     throw DatasetError (path + ": not a PCD file (unreadable header, or no FIELDS/SIZE/TYPE)");
   if (static_cast<std::size_t> (blob.width) * blob.height == 0)
     throw DatasetError (path + ": PCD header declares no points");
+  bool exact = true;
   for (const auto& field : fields)
-    checkField (blob, field, path);
+    exact = blob.fields[checkField (blob, field, path)].datatype == field.datatype && exact;
   if (reader.read (path, blob) != 0)
     throw DatasetError (path + ": not a readable PCD file (truncated or corrupt data)");
-  return blob;
+  if (exact)
+    return blob;
+  std::vector<PcdField> kept = fields;  // z too, when the file has it (the point types hold one)
+  const int z = pcl::getFieldIndex (blob, "z");
+  if (z >= 0 && blob.fields[z].count == 1 && pcl::getFieldSize (blob.fields[z].datatype) != 0 &&
+      std::none_of (fields.begin (), fields.end (), [] (const PcdField& f) { return f.name == "z"; }))
+    kept.push_back ({"z", pcl::PCLPointField::FLOAT32});
+  return convertFields (blob, kept, path);
 }
 
 }  // namespace detail

@@ -165,24 +165,38 @@ TEST_F (DatasetIo, MissingMatchFieldIsNamed)
   expectLoadError (pair_dir, "missing field 'match'");
 }
 
-TEST_F (DatasetIo, FieldOfAnotherTypeSizeOrCountIsNamed)
+TEST_F (DatasetIo, FieldOfAnotherCountIsNamed)
 {
-  // PCL's conversion leaves a field of another TYPE, SIZE or COUNT at 0 without a word.
+  // PCL's conversion leaves a field it cannot map at 0 without a word.
   const std::string pair_dir = writeSmallPair ();
   const fs::path source = fs::path (pair_dir) / "source.pcd";
-  replaceInFile (source, "TYPE F F F U I", "TYPE F F F F I");
-  expectLoadError (pair_dir, "source.pcd: field 'label' must be TYPE U SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 1");
-  replaceInFile (source, "TYPE F F F F I", "TYPE F F F U F");
-  expectLoadError (pair_dir, "source.pcd: field 'match' must be TYPE I SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 1");
-  replaceInFile (source, "TYPE F F F U F", "TYPE F F F U I");
-  replaceInFile (source, "SIZE 4 4 4 4 4", "SIZE 8 8 4 4 4");
-  expectLoadError (pair_dir, "source.pcd: field 'x' must be TYPE F SIZE 4 COUNT 1, found TYPE F SIZE 8 COUNT 1");
-  replaceInFile (source, "SIZE 8 8 4 4 4", "SIZE 4 4 4 4 4");
   replaceInFile (source, "COUNT 1 1 1 1 1", "COUNT 1 2 1 1 1");
-  expectLoadError (pair_dir, "source.pcd: field 'y' must be TYPE F SIZE 4 COUNT 1, found TYPE F SIZE 4 COUNT 2");
-  replaceInFile (source, "COUNT 1 2 1 1 1", "COUNT 1 1 1 1 1");
-  replaceInFile (fs::path (pair_dir) / "target.pcd", "TYPE F F F U", "TYPE F F F I");
-  expectLoadError (pair_dir, "target.pcd: field 'label' must be TYPE U SIZE 4 COUNT 1, found TYPE I SIZE 4 COUNT 1");
+  expectLoadError (pair_dir, "source.pcd: field 'y' must be TYPE F SIZE 4 COUNT 1 (or another TYPE and SIZE of COUNT 1), "
+                             "found TYPE F SIZE 4 COUNT 2");
+}
+
+TEST_F (DatasetIo, FieldsOfAnotherTypeOrSizeAreConverted)
+{
+  // A PCD writer may store x and y as float64 or the labels as int32 or float; the
+  // reader converts them (PCL's conversion used to give zeros, pcl_crf then refused them).
+  const std::string pair_dir = writeSmallPair ();
+  const ScanPair expected = pcl_crf::loadScanPair (pair_dir);
+  const fs::path source = fs::path (pair_dir) / "source.pcd";
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  replaceInFile (source, "SIZE 4 4 4 4 4", "SIZE 8 8 4 4 2");
+  replaceInFile (source, "TYPE F F F U I", "TYPE F F F I I");
+  replaceInFile (target, "TYPE F F F U", "TYPE F F F F");
+  const ScanPair converted = pcl_crf::loadScanPair (pair_dir);
+  EXPECT_EQ (converted.source, expected.source.cast<float> ().cast<double> ());
+  EXPECT_EQ (converted.target, expected.target.cast<float> ().cast<double> ());
+  EXPECT_EQ (converted.source_object, expected.source_object);
+  EXPECT_EQ (converted.source_match, expected.source_match);
+  EXPECT_EQ (converted.target_object, expected.target_object);
+  // A label that is not a whole number, or a negative one, is named with its point.
+  replaceInFile (target, "3.0999999 -0.5 0 3", "3.0999999 -0.5 0 3.5");
+  expectLoadError (pair_dir, "target.pcd: point 2 has label 3.5, not a whole number in [0, 4294967295]");
+  replaceInFile (target, "3.0999999 -0.5 0 3.5", "3.0999999 -0.5 0 -3");
+  expectLoadError (pair_dir, "target.pcd: point 2 has label -3, not a whole number in [0, 4294967295]");
 }
 
 TEST_F (DatasetIo, MatchOutOfRangeIsAnError)
