@@ -53,8 +53,9 @@ KnnIndex::points () const
 KnnIndex::Result
 KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
 {
-  if (k <= 0)
-    throw std::invalid_argument ("[pcl_crf::KnnIndex::search] k must be positive");
+  if (k <= 0 || k > kMaxNeighbours)
+    throw std::invalid_argument ("[pcl_crf::KnnIndex::search] k = " + std::to_string (k) + " must be in [1, " +
+                                 std::to_string (kMaxNeighbours) + "]");
   if (queries.cols () > 0 && queries.rows () != impl_->points.rows ())
     throw std::invalid_argument ("[pcl_crf::KnnIndex::search] queries have " + std::to_string (queries.rows ()) +
                                  " rows, the index " + std::to_string (impl_->points.rows ()));

@@ -126,6 +126,9 @@ readCompositeModel (std::istream& is, const std::string& where, const std::strin
   if (version != std::to_string (kCompositeModelVersion))
     reader.fail ("unsupported composite model version '" + version + "', expected " +
                  std::to_string (kCompositeModelVersion));
+  std::string trailing;
+  if (words >> trailing)
+    reader.fail ("unexpected text '" + trailing + "' after the version");
   reader.expect ("method " + method, "a model of another method");
   std::vector<std::string> names;
   for (const EvaluationMethod* part : parts)

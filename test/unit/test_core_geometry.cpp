@@ -100,6 +100,11 @@ TEST (KnnIndex, FewerPointsThanKAndBadInput)
   EXPECT_EQ (result.indices (1, 0), 1);
   EXPECT_EQ (result.indices (2, 0), -1);
   EXPECT_THROW (index.search (Eigen::MatrixXd::Zero (3, 1), 1), std::invalid_argument);
+  EXPECT_THROW (index.search (Eigen::MatrixXd::Zero (2, 1), 0), std::invalid_argument);
+  // k rows are returned per query: a huge k used to allocate them (terabytes for 1e9).
+  EXPECT_EQ (index.search (Eigen::MatrixXd::Zero (2, 3), pcl_crf::KnnIndex::kMaxNeighbours).indices.rows (),
+             pcl_crf::KnnIndex::kMaxNeighbours);
+  EXPECT_THROW (index.search (Eigen::MatrixXd::Zero (2, 300), 1000000000), std::invalid_argument);
   Eigen::MatrixXd bad = two;
   bad (0, 0) = std::nan ("");
   EXPECT_THROW (pcl_crf::KnnIndex {bad}, std::invalid_argument);

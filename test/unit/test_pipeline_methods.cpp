@@ -271,6 +271,9 @@ TEST_F (PipelineMethods, CorruptOrTruncatedCompositeModelIsAClearError)
                "unexpected end of file, missing 'part crf-clustering' (the file is truncated)");
   expectError (*crf_m, "", "line 1: not a composite model");
   expectError (*crf_m, "pcl_crf_composite_model 2\n", "line 1: unsupported composite model version '2'");
+  std::string junk = text;  // trailing words after the version used to be ignored
+  junk.insert (junk.find ('\n'), " junk");
+  expectError (*crf_m, junk, "line 1: unexpected text 'junk' after the version");
   expectError (*crf_m, text + "part more\n", "unexpected 'part more' after the last part");
   // A part's own error names the file, the part and the line in the whole file.
   std::string corrupt = text;

@@ -29,6 +29,10 @@ public:
     Eigen::MatrixXd squared_distances;
   };
 
+  /** \brief The most neighbours one search returns per query (its result holds k rows
+   *  per query however few points the index holds). */
+  static constexpr int kMaxNeighbours = 65536;
+
   KnnIndex ();
   /** \brief Builds the index over the columns of \a points (copied). */
   explicit KnnIndex (const Eigen::MatrixXd& points);
@@ -52,7 +56,7 @@ public:
 
   /** \brief The k nearest indexed points of every column of \a queries
    *  (rows must equal the indexed dimension).
-   *  \throws std::invalid_argument for k ≤ 0, queries of another dimension, non-finite
+   *  \throws std::invalid_argument for k outside [1, kMaxNeighbours], queries of another dimension, non-finite
    *  queries, or squared distances that overflow to infinity (no neighbour found). */
   Result
   search (const Eigen::MatrixXd& queries, int k) const;
