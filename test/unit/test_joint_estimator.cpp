@@ -558,6 +558,19 @@ TEST (JointEstimation, HandlesTinyScans)
     }
 }
 
+/** Sets \a pair's target and odometry (as the float matrix PCL users pass, returned)
+ *  on \a estimator and aligns its source into \a aligned. */
+Eigen::Matrix4f
+alignWithPairOdometry (pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>& estimator, const ScanPair& pair,
+                       pcl::PointCloud<pcl::PointXYZ>& aligned)
+{
+  estimator.setInputTarget (toCloud (pair.target));
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  estimator.align (aligned);
+  return odometry;
+}
+
 TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
 {
   const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
@@ -566,11 +579,8 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   auto source = toCloud (pair.source);
   (*source)[5].x = std::numeric_limits<float>::quiet_NaN ();  // skipped, indices still refer to the cloud
   estimator.setInputSource (source);
-  estimator.setInputTarget (toCloud (pair.target));
-  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
-  estimator.setOdometry (odometry, pair.odometry.covariance);
   pcl::PointCloud<pcl::PointXYZ> aligned;
-  estimator.align (aligned);
+  alignWithPairOdometry (estimator, pair, aligned);
   ASSERT_TRUE (estimator.hasConverged ());
   // the final transformation is the static world's motion: the inverse of the true ego motion
   const Rigid2d truth = pair.objects[pair.objectIndex (pair.staticObjectId ())].T_target_source;
@@ -687,11 +697,8 @@ TEST (JointCRFEstimator, EstimatesOnlyTheIndexedSourcePoints)
   estimator.setModel (shippedModel ());
   estimator.setInputSource (source);
   estimator.setIndices (indices);
-  estimator.setInputTarget (toCloud (pair.target));
-  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
-  estimator.setOdometry (odometry, pair.odometry.covariance);
   pcl::PointCloud<pcl::PointXYZ> aligned;
-  estimator.align (aligned);
+  const Eigen::Matrix4f odometry = alignWithPairOdometry (estimator, pair, aligned);
   ASSERT_TRUE (estimator.hasConverged ());
   EXPECT_EQ (aligned.size (), indices->size ());
   const Eigen::Matrix4f T = estimator.getFinalTransformation ();
