@@ -9,18 +9,19 @@
 
 namespace pcl_crf {
 
-/** \brief Copies the (x, y) of a PCL cloud into a 2 x N matrix, in cloud order.
- *  Points with a non-finite x or y are skipped; \a kept receives the cloud index
- *  of every column (so results can be mapped back to the user's indices).
- */
-template <typename PointT> Eigen::Matrix2Xd
-toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullptr)
+namespace detail {
+
+/** \brief The finite (x, y) of the cloud points \a index_at (0) … \a index_at (count − 1),
+ *  in that order, as the columns of a 2 x N matrix; \a kept receives their cloud indices. */
+template <typename PointT, typename IndexAt> Eigen::Matrix2Xd
+finiteXY (const pcl::PointCloud<PointT>& cloud, std::size_t count, IndexAt index_at, std::vector<int>* kept)
 {
-  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (cloud.size ()));
+  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (count));
   Eigen::Index n = 0;
   if (kept)
     kept->clear ();
-  for (std::size_t i = 0; i < cloud.size (); ++i) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = index_at (k);
     if (!std::isfinite (cloud[i].x) || !std::isfinite (cloud[i].y))
       continue;
     xy.col (n++) << cloud[i].x, cloud[i].y;
@@ -31,6 +32,18 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullp
   return xy;
 }
 
+}  // namespace detail
+
+/** \brief Copies the (x, y) of a PCL cloud into a 2 x N matrix, in cloud order.
+ *  Points with a non-finite x or y are skipped; \a kept receives the cloud index
+ *  of every column (so results can be mapped back to the user's indices).
+ */
+template <typename PointT> Eigen::Matrix2Xd
+toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullptr)
+{
+  return detail::finiteXY (cloud, cloud.size (), [] (std::size_t k) { return k; }, kept);
+}
+
 /** \brief Copies the (x, y) of the points of \a cloud at \a indices, in that order, into a
  *  2 x N matrix. Points with a non-finite x or y are skipped; \a kept receives the cloud
  *  index of every column. Every index must be a point of the cloud (firstIndexOutside).
@@ -38,20 +51,8 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>* kept = nullp
 template <typename PointT, typename Index> Eigen::Matrix2Xd
 toMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indices, std::vector<int>* kept = nullptr)
 {
-  Eigen::Matrix2Xd xy (2, static_cast<Eigen::Index> (indices.size ()));
-  Eigen::Index n = 0;
-  if (kept)
-    kept->clear ();
-  for (const Index index : indices) {
-    const PointT& p = cloud[static_cast<std::size_t> (index)];
-    if (!std::isfinite (p.x) || !std::isfinite (p.y))
-      continue;
-    xy.col (n++) << p.x, p.y;
-    if (kept)
-      kept->push_back (static_cast<int> (index));
-  }
-  xy.conservativeResize (2, n);
-  return xy;
+  return detail::finiteXY (
+      cloud, indices.size (), [&indices] (std::size_t k) { return static_cast<std::size_t> (indices[k]); }, kept);
 }
 
 /** \brief The position in \a indices of the first index outside a cloud of \a size

@@ -5,7 +5,6 @@
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -28,8 +27,15 @@ describeLayout (int datatype, std::uint32_t count)
          std::to_string (count);
 }
 
-/** \brief Checks that \a blob's header declares \a field, COUNT 1, of a numeric type PCL
- *  knows. \return the field's index in \a blob. */
+/** \brief A field pcl_crf can read: COUNT 1, of a numeric type PCL knows. */
+bool
+isReadable (const pcl::PCLPointField& field)
+{
+  return field.count == 1 && pcl::getFieldSize (field.datatype) != 0;
+}
+
+/** \brief Checks that \a blob's header declares \a field, readable (isReadable).
+ *  \return the field's index in \a blob. */
 int
 checkField (const pcl::PCLPointCloud2& blob, const PcdField& field, const std::string& path)
 {
@@ -37,7 +43,7 @@ checkField (const pcl::PCLPointCloud2& blob, const PcdField& field, const std::s
   if (index < 0)
     throw DatasetError (path + ": missing field '" + field.name + "'");
   const pcl::PCLPointField& found = blob.fields[index];
-  if (found.count != 1 || pcl::getFieldSize (found.datatype) == 0)
+  if (!isReadable (found))
     throw DatasetError (path + ": field '" + field.name + "' must be " + describeLayout (field.datatype, 1) +
                         " (or another TYPE and SIZE of COUNT 1), found " +
                         describeLayout (found.datatype, found.count));
@@ -163,8 +169,7 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
     return blob;
   std::vector<PcdField> kept = fields;  // z too, when the file has it (the point types hold one)
   const int z = pcl::getFieldIndex (blob, "z");
-  if (z >= 0 && blob.fields[z].count == 1 && pcl::getFieldSize (blob.fields[z].datatype) != 0 &&
-      std::none_of (fields.begin (), fields.end (), [] (const PcdField& f) { return f.name == "z"; }))
+  if (z >= 0 && isReadable (blob.fields[z]))
     kept.push_back ({"z", pcl::PCLPointField::FLOAT32});
   return convertFields (blob, kept, path);
 }

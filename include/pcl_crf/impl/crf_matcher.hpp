@@ -6,7 +6,6 @@
 
 #include <pcl/console/print.h>
 
-#include <cmath>
 #include <exception>
 
 namespace pcl_crf {
@@ -123,16 +122,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
     return false;
   }
   // The valid source points in beam order (the indices, or the whole cloud).
-  source_xy_.resize (2, static_cast<Eigen::Index> (indices_->size ()));
-  source_index_.clear ();
-  for (const auto index : *indices_) {
-    const PointSource& p = (*input_)[index];
-    if (!std::isfinite (p.x) || !std::isfinite (p.y))
-      continue;
-    source_xy_.col (static_cast<Eigen::Index> (source_index_.size ())) << p.x, p.y;
-    source_index_.push_back (static_cast<int> (index));
-  }
-  source_xy_.conservativeResize (2, static_cast<Eigen::Index> (source_index_.size ()));
+  source_xy_ = toMatrix2X (*input_, *indices_, &source_index_);
   if (source_index_.empty ()) {
     PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point.\n", getClassName ().c_str (), method);
     return false;
