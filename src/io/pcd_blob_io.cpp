@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -34,6 +35,40 @@ isReadable (const pcl::PCLPointField& field)
   return field.count == 1 && pcl::getFieldSize (field.datatype) != 0;
 }
 
+/** \brief The words after \a keyword on its line of the PCD header of \a path
+ *  (empty when the header, which ends at DATA, has no such line). */
+std::vector<std::string>
+headerLine (const std::string& path, const std::string& keyword)
+{
+  std::ifstream in (path);
+  std::string line, word;
+  while (std::getline (in, line)) {
+    std::istringstream words (line);
+    if (!(words >> word) || word == "DATA")
+      break;
+    if (word != keyword)
+      continue;
+    std::vector<std::string> rest;
+    while (words >> word)
+      rest.push_back (word);
+    return rest;
+  }
+  return {};
+}
+
+/** \brief Why \a name is not among the fields PCL read: PCL drops a field declared
+ *  with COUNT 0 (with a warning of its own), so say so rather than call it missing. */
+std::string
+missingFieldMessage (const std::string& path, const std::string& name)
+{
+  const std::vector<std::string> names = headerLine (path, "FIELDS");
+  const std::vector<std::string> counts = headerLine (path, "COUNT");
+  for (std::size_t i = 0; i < names.size () && i < counts.size (); ++i)
+    if (names[i] == name)
+      return path + ": field '" + name + "' has COUNT " + counts[i] + ", must be 1";
+  return path + ": missing field '" + name + "'";
+}
+
 /** \brief Checks that \a blob's header declares \a field, readable (isReadable).
  *  \return the field's index in \a blob. */
 int
@@ -41,7 +76,7 @@ checkField (const pcl::PCLPointCloud2& blob, const PcdField& field, const std::s
 {
   const int index = pcl::getFieldIndex (blob, field.name);
   if (index < 0)
-    throw DatasetError (path + ": missing field '" + field.name + "'");
+    throw DatasetError (missingFieldMessage (path, field.name));
   const pcl::PCLPointField& found = blob.fields[index];
   if (!isReadable (found))
     throw DatasetError (path + ": field '" + field.name + "' must be " + describeLayout (field.datatype, 1) +

@@ -173,6 +173,9 @@ TEST_F (DatasetIo, FieldOfAnotherCountIsNamed)
   replaceInFile (source, "COUNT 1 1 1 1 1", "COUNT 1 2 1 1 1");
   expectLoadError (pair_dir, "source.pcd: field 'y' must be TYPE F SIZE 4 COUNT 1 (or another TYPE and SIZE of COUNT 1), "
                              "found TYPE F SIZE 4 COUNT 2");
+  // PCL's reader drops a field of COUNT 0 from its header: the field is there, not missing.
+  replaceInFile (source, "COUNT 1 2 1 1 1", "COUNT 1 0 1 1 1");
+  expectLoadError (pair_dir, "source.pcd: field 'y' has COUNT 0, must be 1");
 }
 
 TEST_F (DatasetIo, FieldsOfAnotherTypeOrSizeAreConverted)
