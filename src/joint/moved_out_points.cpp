@@ -7,6 +7,7 @@
 #include "scan_views.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -32,6 +33,18 @@ seenThroughByTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& o
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
     seen[i] = candidate[i] && matching::seesThroughToAReturn (other_view.profile, T * scan.col (i), other_view.breakpoint);
   return seen;
+}
+
+/** The points of \a scan hidden from the other sensor (\a other_view) when moved by T:
+ *  behind a return of it (matching::hiddenBehindAReturn ()), among those \a candidate allows. */
+std::vector<bool>
+hiddenFromTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& other_view, const Rigid2d& T,
+                    const std::vector<bool>& candidate)
+{
+  std::vector<bool> hidden (candidate.size (), false);
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+    hidden[i] = candidate[i] && matching::hiddenBehindAReturn (other_view.profile, T * scan.col (i), other_view.breakpoint);
+  return hidden;
 }
 
 /** The points of \a marked grouped by their segment of \a scan, with the centroids of
@@ -104,20 +117,90 @@ mutualCounterparts (const std::vector<MovedGroup>& moved_out, const std::vector<
   return counterpart;
 }
 
-/** The moved-out group joins a new cluster of motion T: each point takes the nearest
- *  point of the moved-in group within its overlap radius, or no match. */
+/** Whether most points of \a group (points of \a scan), moved by \a T into the frame of
+ *  \a occluder_scan, lie in the shadow of \a occluder (points of that scan): within its
+ *  bearings as that scan's sensor sees them, widened by \a step on each side [rad]. */
+bool
+inShadowOf (const Eigen::Matrix2Xd& scan, const MovedGroup& group, const Rigid2d& T,
+            const Eigen::Matrix2Xd& occluder_scan, const MovedGroup& occluder, double step)
+{
+  const Eigen::Vector2d first = occluder_scan.col (occluder.points.front ());
+  const double reference = std::atan2 (first.y (), first.x ());
+  const auto bearing = [reference] (const Eigen::Vector2d& p) {  // relative to the reference, in [−π, π]
+    return std::remainder (std::atan2 (p.y (), p.x ()) - reference, 2.0 * M_PI);
+  };
+  double low = 0.0, high = 0.0;
+  for (int j : occluder.points) {
+    low = std::min (low, bearing (occluder_scan.col (j)));
+    high = std::max (high, bearing (occluder_scan.col (j)));
+  }
+  std::size_t shadowed = 0;
+  for (int i : group.points) {
+    const double b = bearing (T * scan.col (i));
+    shadowed += b >= low - step && b <= high + step ? 1 : 0;
+  }
+  return 2 * shadowed > group.points.size ();
+}
+
+/** The groups of \a groups not marked in \a paired. */
+std::vector<MovedGroup>
+unpaired (const std::vector<MovedGroup>& groups, const std::vector<bool>& paired)
+{
+  std::vector<MovedGroup> left;
+  for (std::size_t g = 0; g < groups.size (); ++g)
+    if (!paired[g])
+      left.push_back (groups[g]);
+  return left;
+}
+
+/** \a candidate without the points of \a groups. */
+std::vector<bool>
+withoutGroups (std::vector<bool> candidate, const std::vector<MovedGroup>& groups)
+{
+  for (const MovedGroup& group : groups)
+    for (int i : group.points)
+      candidate[i] = false;
+  return candidate;
+}
+
+/** One object seen by one sensor in the other's free space (\a seen, without a
+ *  counterpart there) and hidden from it (a group of \a hidden): per group of \a seen,
+ *  the group of \a hidden it pairs with, or -1. They pair when each is the other's
+ *  nearest (mutualCounterparts ()), the hidden group has at least min_segment_points
+ *  (a point or two behind a return is noise as often as an object), and most of it
+ *  lies in the seen group's shadow (inShadowOf (), moved by \a T_to_seen into the seen
+ *  group's scan frame): what hides an object's other view is the object itself, which
+ *  came nearer along the line of sight or went farther. */
+std::vector<int>
+shadowedCounterparts (const std::vector<MovedGroup>& seen, const Eigen::Matrix2Xd& seen_scan,
+                      const std::vector<MovedGroup>& hidden, const Eigen::Matrix2Xd& hidden_scan,
+                      const Rigid2d& T_to_seen, double step, const matching::SegmentMotionParameters& parameters)
+{
+  std::vector<int> counterpart = mutualCounterparts (seen, hidden, parameters.max_displacement);
+  for (std::size_t a = 0; a < seen.size (); ++a) {
+    const int b = counterpart[a];
+    if (b >= 0 && (static_cast<int> (hidden[b].points.size ()) < parameters.min_segment_points ||
+                   !inShadowOf (hidden_scan, hidden[b], T_to_seen, seen_scan, seen[a], step)))
+      counterpart[a] = -1;
+  }
+  return counterpart;
+}
+
+/** The source group (an object's view in the source) joins a new cluster of motion T:
+ *  each point takes the nearest point of the target group (its view in the target)
+ *  within its overlap radius, or no match. */
 void
-addCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const MovedGroup& moved_out,
-            const MovedGroup& moved_in, const Rigid2d& T, const matching::SegmentMotionParameters& parameters,
+addCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const MovedGroup& source_group,
+            const MovedGroup& target_group, const Rigid2d& T, const matching::SegmentMotionParameters& parameters,
             JointResult& result)
 {
   const int cluster = static_cast<int> (result.cluster_motions.size ());
   result.cluster_motions.push_back (T);
-  for (int i : moved_out.points) {
+  for (int i : source_group.points) {
     const Eigen::Vector2d moved = T * source.col (i);
     int match = kNoMatch;
     double nearest = std::numeric_limits<double>::infinity ();
-    for (int j : moved_in.points) {
+    for (int j : target_group.points) {
       const double radius = matching::overlapRadius (parameters, matching::pointSpacing (target, j, 0, target.cols ()));
       const double distance = (target.col (j) - moved).norm ();
       if (distance <= radius && distance < nearest) {
@@ -147,25 +230,52 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
     free[i] = inStaticWorldOrOutliers (result, i);
   const std::vector<MovedGroup> moved_out = groupBySegment (
       source, views.sourceSegments (), seenThroughByTheOther (source, views.targetView (), T_static, free), T_static);
-  if (moved_out.empty ())
-    return 0;
   const std::vector<matching::ScanSegment>& target_segments = views.targetSegments ();
+  const std::vector<bool> unclaimed = unclaimedTargets (target_segments, target.cols (), free, result);
   const std::vector<MovedGroup> moved_in = groupBySegment (
-      target, target_segments,
-      seenThroughByTheOther (target, views.sourceView (), T_static.inverse (),
-                             unclaimedTargets (target_segments, target.cols (), free, result)),
+      target, target_segments, seenThroughByTheOther (target, views.sourceView (), T_static.inverse (), unclaimed),
       Rigid2d::Identity ());
-  const std::vector<int> counterpart = mutualCounterparts (moved_out, moved_in, parameters.max_displacement);
+  if (moved_out.empty () && moved_in.empty ())
+    return 0;
   int added = 0;
-  for (std::size_t a = 0; a < moved_out.size (); ++a) {
-    const int b = counterpart[a];
-    if (b < 0)  // it left the view or hid, or its view is ambiguous: no motion to give it
-      continue;
-    Rigid2d T = T_static;  // the static motion shifted by the moved-out group's displacement
-    T.translation () += moved_in[b].centroid - moved_out[a].centroid;
-    addCluster (source, target, moved_out[a], moved_in[b], T, parameters, result);
+  const auto pair = [&] (const MovedGroup& source_group, const MovedGroup& target_group) {
+    Rigid2d T = T_static;  // the static motion shifted by the object's displacement
+    T.translation () += target_group.centroid - source_group.centroid;
+    addCluster (source, target, source_group, target_group, T, parameters, result);
     ++added;
-  }
+  };
+  // An object seen before and after it moved: it left free space in both views.
+  const std::vector<int> counterpart = mutualCounterparts (moved_out, moved_in, parameters.max_displacement);
+  std::vector<bool> out_paired (moved_out.size (), false), in_paired (moved_in.size (), false);
+  for (std::size_t a = 0; a < moved_out.size (); ++a)
+    if (counterpart[a] >= 0) {
+      pair (moved_out[a], moved_in[counterpart[a]]);
+      out_paired[a] = in_paired[counterpart[a]] = true;
+    }
+  // An object that came nearer: its source view, under the static motion, hides behind
+  // it in the target (no moved-out group).
+  const std::vector<MovedGroup> came_in = unpaired (moved_in, in_paired);
+  const std::vector<MovedGroup> hidden_source = groupBySegment (
+      source, views.sourceSegments (),
+      hiddenFromTheOther (source, views.targetView (), T_static, withoutGroups (free, moved_out)), T_static);
+  const std::vector<int> nearer = shadowedCounterparts (came_in, target, hidden_source, source, T_static,
+                                                        views.targetView ().profile.step, parameters);
+  for (std::size_t b = 0; b < came_in.size (); ++b)
+    if (nearer[b] >= 0)
+      pair (hidden_source[nearer[b]], came_in[b]);
+  // An object that went farther: its target view, under the inverse static motion,
+  // hides behind it in the source (no moved-in group). Unpaired moved-out groups can
+  // also have left the view or hidden behind something else: they stay.
+  const std::vector<MovedGroup> went_out = unpaired (moved_out, out_paired);
+  const std::vector<MovedGroup> hidden_target = groupBySegment (
+      target, target_segments,
+      hiddenFromTheOther (target, views.sourceView (), T_static.inverse (), withoutGroups (unclaimed, moved_in)),
+      Rigid2d::Identity ());
+  const std::vector<int> farther = shadowedCounterparts (went_out, source, hidden_target, target, T_static.inverse (),
+                                                         views.sourceView ().profile.step, parameters);
+  for (std::size_t a = 0; a < went_out.size (); ++a)
+    if (farther[a] >= 0)
+      pair (went_out[a], hidden_target[farther[a]]);
   if (added > 0)
     numberLargestFirst (result);
   return added;

@@ -204,23 +204,34 @@ seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, double b
 
 namespace {
 
-/** seesThrough () and seesThroughToAReturn (): \a empty_beams_free says whether a
- *  direction without a return within one step counts as seen through. */
-bool
-seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
-                  bool empty_beams_free)
+/** What the returns within one step of a point's bearing say about it, each compared
+ *  with the breakpoint distance at the smaller of its range and the point's. */
+enum class ReturnsNear
+{
+  None,     // no return within one step (or the point is out of view)
+  Farther,  // every one lies farther than the point by more than the breakpoint distance
+  Nearer,   // every one lies nearer than the point by more than the breakpoint distance
+  Mixed     // some lie within the breakpoint distance of the point, or on both sides
+};
+
+/** Compares \a point with the returns within one step of its bearing (see ReturnsNear);
+ *  \a inside tells whether it lies in the field of view (None otherwise). */
+ReturnsNear
+compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
+                        bool& inside)
 {
   const Eigen::Index m = profile.bearings.size ();
   const double step = profile.step;
+  inside = false;
   if (m < 2 || !(step > 0.0) || !std::isfinite (distance.slope))
-    return false;
+    return ReturnsNear::None;
   const double theta = bearingFrom (profile, point);
-  if (!inField (profile, theta))
-    return false;
+  if (!(inside = inField (profile, theta)))
+    return ReturnsNear::None;
   const double range = point.norm ();
   const double margin = range * distance.slope + distance.offset;
   const Eigen::Index after = firstReturnNotBefore (profile, theta);
-  bool near_return = false;
+  bool farther = false, nearer = false;
   for (const Eigen::Index direction : {Eigen::Index (-1), Eigen::Index (1)}) {  // outwards from theta
     Eigen::Index k = direction < 0 ? after - 1 : after;
     for (Eigen::Index visited = 0; visited < m; ++visited, k += direction) {
@@ -229,12 +240,34 @@ seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, con
                                      counterClockwise (theta, profile.bearings (j)));
       if (apart > step)
         break;
-      near_return = true;
-      if (profile.ranges (j) <= range + margin)
-        return false;
+      // The breakpoint distance at the smaller range, as the breakpoint detector takes it.
+      if (profile.ranges (j) > range + margin)
+        farther = true;
+      else if (profile.ranges (j) * (1.0 + distance.slope) + distance.offset < range)
+        nearer = true;
+      else
+        return ReturnsNear::Mixed;
     }
   }
-  return near_return || (empty_beams_free && range + margin < profile.max_range);
+  if (farther && nearer)
+    return ReturnsNear::Mixed;
+  return farther ? ReturnsNear::Farther : nearer ? ReturnsNear::Nearer : ReturnsNear::None;
+}
+
+/** seesThrough () and seesThroughToAReturn (): \a empty_beams_free says whether a
+ *  direction without a return within one step counts as seen through. */
+bool
+seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
+                  bool empty_beams_free)
+{
+  bool inside = false;
+  switch (compareWithReturnsNear (profile, point, distance, inside)) {
+    case ReturnsNear::Farther: return true;
+    case ReturnsNear::None:
+      return inside && empty_beams_free && point.norm () + point.norm () * distance.slope + distance.offset <
+                                               profile.max_range;
+    default: return false;
+  }
 }
 
 }  // namespace
@@ -258,6 +291,13 @@ bool
 seesThroughToAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
 {
   return seesThroughPoint (profile, point, distance, false);
+}
+
+bool
+hiddenBehindAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
+  bool inside = false;
+  return compareWithReturnsNear (profile, point, distance, inside) == ReturnsNear::Nearer;
 }
 
 }  // namespace matching

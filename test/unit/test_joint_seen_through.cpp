@@ -333,6 +333,112 @@ TEST (JointMovedPoints, MovingClustersKeepTheirPointsAndBadResultsAreRejected)
                 std::invalid_argument);
 }
 
+/** A wall along y = 8 m and a board 1 m wide (x in [-0.5, 0.5] m) along y = \a source_y m
+ *  in the source and \a target_y m in the target: it drove straight towards the sensor
+ *  (or away from it), so its view in one scan hides behind its view in the other. */
+struct RadialBoard
+{
+  Eigen::Matrix2Xd source, target;
+  std::vector<int> source_object, target_object;
+
+  RadialBoard (double source_y, double target_y)
+  {
+    source = rayCast ({{8.0, -20.0, 20.0, kWall}, {source_y, -0.5, 0.5, kBoard}}, source_object);
+    target = rayCast ({{8.0, -20.0, 20.0, kWall}, {target_y, -0.5, 0.5, kBoard}}, target_object);
+  }
+};
+
+/** Checks that \a result gives the board, and only it, a cluster of its own moving by
+ *  \a dy along y, its points matched to the board's target points. */
+void
+expectBoardCluster (const RadialBoard& scene, const JointResult& result, double dy)
+{
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  EXPECT_EQ (result.static_cluster, 0);
+  EXPECT_EQ (clusterOf (scene.source_object, kWall, result), 0);
+  ASSERT_EQ (clusterOf (scene.source_object, kBoard, result), 1);
+  // The centroids' displacement: exact across the board, within a beam spacing along it
+  // (0.5° at 3 m, 0.03 m; the beams sample the board at other places in each scan).
+  EXPECT_NEAR (result.cluster_motions[1].translation ().y (), dy, 1e-9);
+  EXPECT_NEAR (result.cluster_motions[1].translation ().x (), 0.0, 0.03);
+  EXPECT_NEAR (result.cluster_motions[1].rotation () (1, 0), 0.0, 1e-12);
+  int matched = 0;
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
+    if (scene.source_object[i] == kBoard && result.source_match[i] != kNoMatch) {
+      EXPECT_EQ (scene.target_object[result.source_match[i]], kBoard) << i;
+      ++matched;
+    }
+  EXPECT_GT (matched, 0);
+}
+
+TEST (JointMovedPoints, AnObjectThatCameNearerPairsWithItsViewHiddenBehindIt)
+{
+  // The board at 3 m in the target stands where the source saw through to it at 5 m
+  // (it moved in); its source view lies behind it in the target, seen through by no
+  // beam (nothing moved out). Hidden, that view still pairs with the board: it lies
+  // in the board's shadow.
+  const RadialBoard scene (5.0, 3.0);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = allStaticResult (scene.source, scene.target);
+  ASSERT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 1);
+  expectBoardCluster (scene, result, -2.0);
+}
+
+TEST (JointMovedPoints, AnObjectThatWentFartherPairsWithItsViewHiddenBehindIt)
+{
+  // The mirror: the board at 3 m in the source moved out; its target view at 5 m hides
+  // behind it from the source sensor.
+  const RadialBoard scene (3.0, 5.0);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = allStaticResult (scene.source, scene.target);
+  ASSERT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, parameters, result), 1);
+  expectBoardCluster (scene, result, 2.0);
+}
+
+TEST (JointMovedPoints, AHiddenViewPairsOnlyInItsObjectsShadowAndWithEnoughPoints)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  {
+    // The board came 2 m nearer: farther than max_displacement, its views do not pair
+    // (nor does the band of wall it now hides, farther still).
+    pcl_crf::matching::SegmentMotionParameters near_only = parameters;
+    near_only.max_displacement = 1.5;
+    const RadialBoard scene (5.0, 3.0);
+    JointResult result = allStaticResult (scene.source, scene.target);
+    EXPECT_EQ (separatePointsTheTargetSeesThrough (scene.source, scene.target, near_only, result), 0);
+    EXPECT_EQ (clusterOf (scene.source_object, kBoard, result), 0);
+  }
+  {
+    // A board too narrow to be told from noise: 2 points hide behind its target view,
+    // fewer than min_segment_points (3); with 2 allowed, they pair.
+    std::vector<int> source_object, target_object;
+    const Eigen::Matrix2Xd source =
+        rayCast ({{8.0, -20.0, 20.0, kWall}, {5.0, -0.01, 0.05, kBoard}}, source_object);
+    const Eigen::Matrix2Xd target =
+        rayCast ({{8.0, -20.0, 20.0, kWall}, {3.0, -0.01, 0.05, kBoard}}, target_object);
+    ASSERT_EQ (std::count (source_object.begin (), source_object.end (), kBoard), 2);
+    JointResult result = allStaticResult (source, target);
+    EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, parameters, result), 0);
+    pcl_crf::matching::SegmentMotionParameters two_points = parameters;
+    two_points.min_segment_points = 2;
+    EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, two_points, result), 1);
+    EXPECT_EQ (clusterOf (source_object, kBoard, result), 1);
+  }
+  {
+    // A post appears in front of a static box and hides part of it; a board appears
+    // nearer to that part than the post is. The hidden part of the box and the board are
+    // each other's nearest, but the part is in the post's shadow, not the board's.
+    std::vector<int> source_object, target_object;
+    const Eigen::Matrix2Xd source =
+        rayCast ({{8.0, -20.0, 20.0, kWall}, {6.0, 2.0, 3.0, kCar}}, source_object);
+    const Eigen::Matrix2Xd target = rayCast (
+        {{8.0, -20.0, 20.0, kWall}, {6.0, 2.0, 3.0, kCar}, {3.0, 1.2, 1.6, kBoard}, {6.5, 3.5, 3.7, kWalkerC}},
+        target_object);
+    JointResult result = allStaticResult (source, target);
+    EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, parameters, result), 0);
+  }
+}
+
 constexpr int kTruck = 1;
 
 /** A wall along y = 8 m and a truck along y = 2 m, x in [1, 6] m, that drives

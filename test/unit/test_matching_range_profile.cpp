@@ -9,6 +9,7 @@
 
 namespace {
 
+using pcl_crf::matching::hiddenBehindAReturn;
 using pcl_crf::matching::inFieldOfView;
 using pcl_crf::matching::makeRangeProfile;
 using pcl_crf::matching::seesThrough;
@@ -109,6 +110,26 @@ TEST (RangeProfile, OnTheEvidenceOfReturnsOnlyADirectionWithoutReturnsSaysNothin
   EXPECT_FALSE (seesThroughToAReturn (profile, polar (15.0, 1.0), distance));
   // Outside the field of view neither does.
   EXPECT_FALSE (seesThroughToAReturn (profile, polar (60.0, 1.0), distance));
+}
+
+TEST (RangeProfile, APointBehindEveryReturnAroundItIsHidden)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  const auto distance = pcl_crf::matching::breakpointDistance (profile, kLambda, kNoise);
+  // At 0.5° the returns lie at 5 m and 5.0008 m; the margin at the return's range,
+  // margin (5.0008) = 0.588 m.
+  EXPECT_TRUE (hiddenBehindAReturn (profile, polar (0.5, 6.0), distance));
+  EXPECT_TRUE (hiddenBehindAReturn (profile, polar (0.5, 5.0008 + margin (5.0008) + 0.001), distance));
+  // On the wall, just behind it (within the margin) or before it: not hidden.
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (0.5, 5.0008 + margin (5.0008) - 0.001), distance));
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (0.5, 5.3), distance));
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (0.5, 5.0), distance));
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (0.5, 3.0), distance));
+  // No return within a step (the opening), or outside the field of view: nothing hides it.
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (15.0, 9.0), distance));
+  EXPECT_FALSE (hiddenBehindAReturn (profile, polar (60.0, 9.0), distance));
+  // 9.5°: the return at 9° (5.066 m) is within a step, the one at 21° is not.
+  EXPECT_TRUE (hiddenBehindAReturn (profile, polar (9.5, 6.0), distance));
 }
 
 TEST (RangeProfile, NothingOutsideTheFieldOfViewWasSeenThrough)

@@ -103,5 +103,13 @@ seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const Br
 bool
 seesThroughToAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
 
+/** \brief The mirror of seesThroughToAReturn (): true when the point lies inside the field
+ *  of view, some return lies within one step of its bearing and every such return lies
+ *  nearer than it by more than the breakpoint distance (r sin Δφ / sin(λ − Δφ) + 3σ, r the
+ *  return's range, the smaller as in the breakpoint detector): the sensor could not have
+ *  seen it, something stood in front of it. */
+bool
+hiddenBehindAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
+
 }  // namespace matching
 }  // namespace pcl_crf
