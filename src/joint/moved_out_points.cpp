@@ -142,6 +142,33 @@ inShadowOf (const Eigen::Matrix2Xd& scan, const MovedGroup& group, const Rigid2d
   return 2 * shadowed > group.points.size ();
 }
 
+/** Whether a point of \a group (points of \a scan, in beam order) has a neighbour in
+ *  beam order outside the group that \a on_static_surface marks and that continues its
+ *  surface: the next beam's return (their bearings at most 1.5 steps apart) within the
+ *  breakpoint distance (at the smaller range). Such a group is a stretch of a surface the
+ *  static motion explains on either side of it, hidden in the middle (a wall behind a
+ *  walker), not an object's view, which ends at the object's own edges. */
+bool
+continuesAStaticSurface (const Eigen::Matrix2Xd& scan, const MovedGroup& group,
+                         const std::vector<bool>& on_static_surface, const detail::SensorView& view)
+{
+  std::vector<bool> in_group (on_static_surface.size (), false);
+  for (int i : group.points)
+    in_group[i] = true;
+  const auto bearing = [&scan] (Eigen::Index i) { return std::atan2 (scan (1, i), scan (0, i)); };
+  for (int i : group.points)
+    for (const int j : {i - 1, i + 1}) {
+      if (j < 0 || j >= scan.cols () || in_group[j] || !on_static_surface[j])
+        continue;
+      const double step = std::abs (std::remainder (bearing (j) - bearing (i), 2.0 * M_PI));
+      const double range = std::min (scan.col (i).norm (), scan.col (j).norm ());
+      if (step <= 1.5 * view.profile.step &&
+          (scan.col (j) - scan.col (i)).norm () <= range * view.breakpoint.slope + view.breakpoint.offset)
+        return true;
+    }
+  return false;
+}
+
 /** The groups of \a groups not marked in \a paired. */
 std::vector<MovedGroup>
 unpaired (const std::vector<MovedGroup>& groups, const std::vector<bool>& paired)
@@ -173,14 +200,17 @@ withoutGroups (std::vector<bool> candidate, const std::vector<MovedGroup>& group
  *  came nearer along the line of sight or went farther. */
 std::vector<int>
 shadowedCounterparts (const std::vector<MovedGroup>& seen, const Eigen::Matrix2Xd& seen_scan,
-                      const std::vector<MovedGroup>& hidden, const Eigen::Matrix2Xd& hidden_scan,
-                      const Rigid2d& T_to_seen, double step, const matching::SegmentMotionParameters& parameters)
+                      const detail::SensorView& seen_view, const std::vector<MovedGroup>& hidden,
+                      const Eigen::Matrix2Xd& hidden_scan, const detail::SensorView& hidden_view,
+                      const std::vector<bool>& hidden_on_static_surface, const Rigid2d& T_to_seen,
+                      const matching::SegmentMotionParameters& parameters)
 {
   std::vector<int> counterpart = mutualCounterparts (seen, hidden, parameters.max_displacement);
   for (std::size_t a = 0; a < seen.size (); ++a) {
     const int b = counterpart[a];
     if (b >= 0 && (static_cast<int> (hidden[b].points.size ()) < parameters.min_segment_points ||
-                   !inShadowOf (hidden_scan, hidden[b], T_to_seen, seen_scan, seen[a], step)))
+                   !inShadowOf (hidden_scan, hidden[b], T_to_seen, seen_scan, seen[a], seen_view.profile.step) ||
+                   continuesAStaticSurface (hidden_scan, hidden[b], hidden_on_static_surface, hidden_view)))
       counterpart[a] = -1;
   }
   return counterpart;
@@ -252,14 +282,28 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
       pair (moved_out[a], moved_in[counterpart[a]]);
       out_paired[a] = in_paired[counterpart[a]] = true;
     }
+  // Points of a surface the static motion explains: static source points it puts within
+  // their overlap radius of their match, and those matches.
+  std::vector<bool> source_on_static_surface (free.size (), false);
+  std::vector<bool> target_on_static_surface (static_cast<std::size_t> (target.cols ()), false);
+  for (std::size_t i = 0; i < free.size (); ++i) {
+    const int j = result.source_match[i];
+    if (result.source_cluster[i] != result.static_cluster || j == kNoMatch)
+      continue;
+    const double radius = matching::overlapRadius (
+        parameters, matching::pointSpacing (source, static_cast<Eigen::Index> (i), 0, source.cols ()));
+    if ((T_static * source.col (i) - target.col (j)).norm () <= radius)
+      source_on_static_surface[i] = target_on_static_surface[j] = true;
+  }
   // An object that came nearer: its source view, under the static motion, hides behind
   // it in the target (no moved-out group).
   const std::vector<MovedGroup> came_in = unpaired (moved_in, in_paired);
   const std::vector<MovedGroup> hidden_source = groupBySegment (
       source, views.sourceSegments (),
       hiddenFromTheOther (source, views.targetView (), T_static, withoutGroups (free, moved_out)), T_static);
-  const std::vector<int> nearer = shadowedCounterparts (came_in, target, hidden_source, source, T_static,
-                                                        views.targetView ().profile.step, parameters);
+  const std::vector<int> nearer =
+      shadowedCounterparts (came_in, target, views.targetView (), hidden_source, source, views.sourceView (),
+                            source_on_static_surface, T_static, parameters);
   for (std::size_t b = 0; b < came_in.size (); ++b)
     if (nearer[b] >= 0)
       pair (hidden_source[nearer[b]], came_in[b]);
@@ -271,8 +315,9 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
       target, target_segments,
       hiddenFromTheOther (target, views.sourceView (), T_static.inverse (), withoutGroups (unclaimed, moved_in)),
       Rigid2d::Identity ());
-  const std::vector<int> farther = shadowedCounterparts (went_out, source, hidden_target, target, T_static.inverse (),
-                                                         views.sourceView ().profile.step, parameters);
+  const std::vector<int> farther =
+      shadowedCounterparts (went_out, source, views.sourceView (), hidden_target, target, views.targetView (),
+                            target_on_static_surface, T_static.inverse (), parameters);
   for (std::size_t a = 0; a < went_out.size (); ++a)
     if (farther[a] >= 0)
       pair (went_out[a], hidden_target[farther[a]]);

@@ -425,18 +425,35 @@ TEST (JointMovedPoints, AHiddenViewPairsOnlyInItsObjectsShadowAndWithEnoughPoint
     EXPECT_EQ (clusterOf (source_object, kBoard, result), 1);
   }
   {
-    // A post appears in front of a static box and hides part of it; a board appears
-    // nearer to that part than the post is. The hidden part of the box and the board are
-    // each other's nearest, but the part is in the post's shadow, not the board's.
+    // A board appears in front of a static box and hides all of it; a post appears
+    // nearer to the box than the board is. The hidden box and the post are each other's
+    // nearest, but the box is in the board's shadow, not the post's.
     std::vector<int> source_object, target_object;
     const Eigen::Matrix2Xd source =
-        rayCast ({{8.0, -20.0, 20.0, kWall}, {6.0, 2.0, 3.0, kCar}}, source_object);
+        rayCast ({{8.0, -20.0, 20.0, kWall}, {6.0, 2.3, 2.7, kCar}}, source_object);
     const Eigen::Matrix2Xd target = rayCast (
-        {{8.0, -20.0, 20.0, kWall}, {6.0, 2.0, 3.0, kCar}, {3.0, 1.2, 1.6, kBoard}, {6.5, 3.5, 3.7, kWalkerC}},
+        {{8.0, -20.0, 20.0, kWall}, {6.0, 2.3, 2.7, kCar}, {3.0, 1.0, 1.4, kBoard}, {6.5, 3.5, 3.7, kWalkerC}},
         target_object);
+    ASSERT_EQ (std::count (target_object.begin (), target_object.end (), kCar), 0);
     JointResult result = allStaticResult (source, target);
     EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, parameters, result), 0);
   }
+}
+
+TEST (JointMovedPoints, AStretchOfWallHiddenBehindANewcomerIsNoObjectsView)
+{
+  // A board appears 4 m away (it moved in) and hides 1.2 m of the wall behind it. That
+  // stretch is hidden, in the board's shadow and its nearest group, but the wall goes on,
+  // explained by the static motion, on both sides of it: a surface hidden in the middle,
+  // not the board's old view, which would end at the board's own edges.
+  std::vector<int> source_object, target_object;
+  const Eigen::Matrix2Xd source = rayCast ({{8.0, -20.0, 20.0, kWall}}, source_object);
+  const Eigen::Matrix2Xd target =
+      rayCast ({{8.0, -20.0, 20.0, kWall}, {4.0, -0.3, 0.3, kBoard}}, target_object);
+  JointResult result = allStaticResult (source, target);
+  EXPECT_EQ (separatePointsTheTargetSeesThrough (source, target, pcl_crf::matching::SegmentMotionParameters (), result),
+             0);
+  EXPECT_EQ (result.cluster_motions.size (), 1u);
 }
 
 constexpr int kTruck = 1;

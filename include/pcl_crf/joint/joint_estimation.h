@@ -133,7 +133,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  segments the static motion slides along themselves whose end the target saw
  *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
  *  do points that moved out of where the static motion puts them, paired with points
- *  that moved in (separatePointsTheTargetSeesThrough ()); last, a moving cluster whose
+ *  that moved in or with the object's other view hidden behind it
+ *  (separatePointsTheTargetSeesThrough ()); last, a moving cluster whose
  *  points lie in parts far apart becomes one cluster per part (separateDistantParts ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
@@ -219,14 +220,27 @@ removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
  *  it moved, down to a single point (a pedestrian far away). Each pair becomes a new
  *  cluster of the static motion shifted by the centroids' displacement; its points take
  *  the moved-in group's point nearest to where that motion puts them within its overlap
- *  radius (matching::overlapRadius ()), or no match. A moved-out group without a
- *  counterpart (it left the view or hid) stays: there is no motion to give it. Beams
- *  without a return are no evidence here (real lasers drop returns where the scene is
- *  not free).
+ *  radius (matching::overlapRadius ()), or no match. An object that came nearer along
+ *  the line of sight leaves no moved-out group: under the static motion its source
+ *  points hide behind it in the target (matching::hiddenBehindAReturn ()). So a
+ *  moved-in group without a counterpart pairs, in the same way, with the group (by
+ *  source segment) of static or outlier source points hidden from the target when each
+ *  is the other's nearest, the hidden group has at least min_segment_points, most of
+ *  its points lie in the moved-in group's shadow (within its bearings as the target
+ *  sensor sees them, a step wider on each side): what hides an object's old view is the
+ *  object; and no point of it has a neighbour on the next beam, within the breakpoint
+ *  distance, that the static motion explains (puts within its overlap radius of its
+ *  match): that is a surface hidden in the middle, a wall behind a walker, where an
+ *  object's view ends at the object's edges. Likewise an object that went farther: a moved-out group without a
+ *  counterpart pairs with the target points hidden from the source behind it. A group
+ *  left without a counterpart (it left the view or hid behind something else) stays:
+ *  there is no motion to give it. Beams without a return are no evidence here (real
+ *  lasers drop returns where the scene is not free).
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
- *  \param[in] parameters the breakpoint angle, range noise, overlap radius and
- *  max_displacement (the matcher's segment parameters, limitToInterval () for the pair)
+ *  \param[in] parameters the breakpoint angle, range noise, overlap radius,
+ *  min_segment_points and max_displacement (the matcher's segment parameters,
+ *  limitToInterval () for the pair)
  *  \param[in,out] result a joint result over \a source whose matches index \a target
  *  \return the number of clusters added (0 without a static world)
  *  \throws std::invalid_argument when the result's sizes disagree with each other or with

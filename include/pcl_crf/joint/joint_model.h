@@ -42,8 +42,8 @@ struct JointParameters
    *  cluster of their own (separateObjectsInFreeSpace ()). */
   bool separate_objects_in_free_space = true;
   /** true (default): points that moved out of where the static motion puts them, paired
-   *  with points that moved in, get clusters of their own
-   *  (separatePointsTheTargetSeesThrough ()). */
+   *  with points that moved in (or with the object's other view hidden behind it), get
+   *  clusters of their own (separatePointsTheTargetSeesThrough ()). */
   bool separate_points_the_target_sees_through = true;
   /** true (default): a static or unclustered segment the target saw through under the
    *  static motion gets a cluster of its own when sliding it to align its object end
