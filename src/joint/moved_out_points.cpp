@@ -193,11 +193,13 @@ withoutGroups (std::vector<bool> candidate, const std::vector<MovedGroup>& group
 /** One object seen by one sensor in the other's free space (\a seen, without a
  *  counterpart there) and hidden from it (a group of \a hidden): per group of \a seen,
  *  the group of \a hidden it pairs with, or -1. They pair when each is the other's
- *  nearest (mutualCounterparts ()), the hidden group has at least min_segment_points
- *  (a point or two behind a return is noise as often as an object), and most of it
- *  lies in the seen group's shadow (inShadowOf (), moved by \a T_to_seen into the seen
- *  group's scan frame): what hides an object's other view is the object itself, which
- *  came nearer along the line of sight or went farther. */
+ *  nearest (mutualCounterparts ()), both have at least min_segment_points (a point or
+ *  two in free space or behind a return is noise as often as an object), most of the
+ *  hidden group lies in the seen group's shadow (inShadowOf (), moved by \a T_to_seen
+ *  into the seen group's scan frame): what hides an object's other view is the object
+ *  itself, which came nearer along the line of sight or went farther; and the hidden
+ *  group does not continue a surface the static motion explains
+ *  (continuesAStaticSurface () with \a hidden_on_static_surface). */
 std::vector<int>
 shadowedCounterparts (const std::vector<MovedGroup>& seen, const Eigen::Matrix2Xd& seen_scan,
                       const detail::SensorView& seen_view, const std::vector<MovedGroup>& hidden,
@@ -208,7 +210,8 @@ shadowedCounterparts (const std::vector<MovedGroup>& seen, const Eigen::Matrix2X
   std::vector<int> counterpart = mutualCounterparts (seen, hidden, parameters.max_displacement);
   for (std::size_t a = 0; a < seen.size (); ++a) {
     const int b = counterpart[a];
-    if (b >= 0 && (static_cast<int> (hidden[b].points.size ()) < parameters.min_segment_points ||
+    if (b >= 0 && (static_cast<int> (std::min (seen[a].points.size (), hidden[b].points.size ())) <
+                       parameters.min_segment_points ||
                    !inShadowOf (hidden_scan, hidden[b], T_to_seen, seen_scan, seen[a], seen_view.profile.step) ||
                    continuesAStaticSurface (hidden_scan, hidden[b], hidden_on_static_surface, hidden_view)))
       counterpart[a] = -1;

@@ -225,7 +225,7 @@ removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
  *  points hide behind it in the target (matching::hiddenBehindAReturn ()). So a
  *  moved-in group without a counterpart pairs, in the same way, with the group (by
  *  source segment) of static or outlier source points hidden from the target when each
- *  is the other's nearest, the hidden group has at least min_segment_points, most of
+ *  is the other's nearest, both groups have at least min_segment_points, most of
  *  its points lie in the moved-in group's shadow (within its bearings as the target
  *  sensor sees them, a step wider on each side): what hides an object's old view is the
  *  object; and no point of it has a neighbour on the next beam, within the breakpoint
