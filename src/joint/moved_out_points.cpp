@@ -23,28 +23,20 @@ struct MovedGroup
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero ();
 };
 
-/** The points of \a scan that the other sensor (\a other_view) saw through (to a return)
- *  when moved by T, among those \a candidate allows. */
-std::vector<bool>
-seenThroughByTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& other_view, const Rigid2d& T,
-                       const std::vector<bool>& candidate)
-{
-  std::vector<bool> seen (candidate.size (), false);
-  for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    seen[i] = candidate[i] && matching::seesThroughToAReturn (other_view.profile, T * scan.col (i), other_view.breakpoint);
-  return seen;
-}
+/** What the other sensor's view says of a point in its frame: matching::seesThroughToAReturn ()
+ *  (the point moved out, or in) or matching::hiddenBehindAReturn (). */
+using ViewTest = bool (*) (const matching::RangeProfile&, const Eigen::Vector2d&, const matching::BreakpointDistance&);
 
-/** The points of \a scan hidden from the other sensor (\a other_view) when moved by T:
- *  behind a return of it (matching::hiddenBehindAReturn ()), among those \a candidate allows. */
+/** The points of \a scan, among those \a candidate allows, of which \a test holds in the
+ *  other sensor's view (\a other_view) when moved by T into its frame. */
 std::vector<bool>
-hiddenFromTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& other_view, const Rigid2d& T,
-                    const std::vector<bool>& candidate)
+markedByTheOther (const Eigen::Matrix2Xd& scan, const detail::SensorView& other_view, const Rigid2d& T,
+                  const std::vector<bool>& candidate, ViewTest test)
 {
-  std::vector<bool> hidden (candidate.size (), false);
+  std::vector<bool> marked (candidate.size (), false);
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    hidden[i] = candidate[i] && matching::hiddenBehindAReturn (other_view.profile, T * scan.col (i), other_view.breakpoint);
-  return hidden;
+    marked[i] = candidate[i] && test (other_view.profile, T * scan.col (i), other_view.breakpoint);
+  return marked;
 }
 
 /** The points of \a marked grouped by their segment of \a scan, with the centroids of
@@ -246,6 +238,31 @@ addCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, cons
   }
 }
 
+/** The points of each scan on a surface the static motion explains: static source points
+ *  it puts within their overlap radius of their match, and those matches. */
+struct StaticSurface
+{
+  std::vector<bool> source;
+  std::vector<bool> target;
+};
+
+StaticSurface
+staticSurface (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Rigid2d& T_static,
+               const matching::SegmentMotionParameters& parameters, const JointResult& result)
+{
+  StaticSurface surface{std::vector<bool> (static_cast<std::size_t> (source.cols ()), false),
+                        std::vector<bool> (static_cast<std::size_t> (target.cols ()), false)};
+  for (Eigen::Index i = 0; i < source.cols (); ++i) {
+    const int j = result.source_match[i];
+    if (result.source_cluster[i] != result.static_cluster || j == kNoMatch)
+      continue;
+    const double radius = matching::overlapRadius (parameters, matching::pointSpacing (source, i, 0, source.cols ()));
+    if ((T_static * source.col (i) - target.col (j)).norm () <= radius)
+      surface.source[i] = surface.target[j] = true;
+  }
+  return surface;
+}
+
 }  // namespace
 
 int
@@ -262,11 +279,13 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
   for (std::size_t i = 0; i < free.size (); ++i)
     free[i] = inStaticWorldOrOutliers (result, i);
   const std::vector<MovedGroup> moved_out = groupBySegment (
-      source, views.sourceSegments (), seenThroughByTheOther (source, views.targetView (), T_static, free), T_static);
+      source, views.sourceSegments (),
+      markedByTheOther (source, views.targetView (), T_static, free, matching::seesThroughToAReturn), T_static);
   const std::vector<matching::ScanSegment>& target_segments = views.targetSegments ();
   const std::vector<bool> unclaimed = unclaimedTargets (target_segments, target.cols (), free, result);
   const std::vector<MovedGroup> moved_in = groupBySegment (
-      target, target_segments, seenThroughByTheOther (target, views.sourceView (), T_static.inverse (), unclaimed),
+      target, target_segments,
+      markedByTheOther (target, views.sourceView (), T_static.inverse (), unclaimed, matching::seesThroughToAReturn),
       Rigid2d::Identity ());
   if (moved_out.empty () && moved_in.empty ())
     return 0;
@@ -285,28 +304,18 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
       pair (moved_out[a], moved_in[counterpart[a]]);
       out_paired[a] = in_paired[counterpart[a]] = true;
     }
-  // Points of a surface the static motion explains: static source points it puts within
-  // their overlap radius of their match, and those matches.
-  std::vector<bool> source_on_static_surface (free.size (), false);
-  std::vector<bool> target_on_static_surface (static_cast<std::size_t> (target.cols ()), false);
-  for (std::size_t i = 0; i < free.size (); ++i) {
-    const int j = result.source_match[i];
-    if (result.source_cluster[i] != result.static_cluster || j == kNoMatch)
-      continue;
-    const double radius = matching::overlapRadius (
-        parameters, matching::pointSpacing (source, static_cast<Eigen::Index> (i), 0, source.cols ()));
-    if ((T_static * source.col (i) - target.col (j)).norm () <= radius)
-      source_on_static_surface[i] = target_on_static_surface[j] = true;
-  }
+  const StaticSurface on_static_surface = staticSurface (source, target, T_static, parameters, result);
   // An object that came nearer: its source view, under the static motion, hides behind
   // it in the target (no moved-out group).
   const std::vector<MovedGroup> came_in = unpaired (moved_in, in_paired);
   const std::vector<MovedGroup> hidden_source = groupBySegment (
       source, views.sourceSegments (),
-      hiddenFromTheOther (source, views.targetView (), T_static, withoutGroups (free, moved_out)), T_static);
+      markedByTheOther (source, views.targetView (), T_static, withoutGroups (free, moved_out),
+                        matching::hiddenBehindAReturn),
+      T_static);
   const std::vector<int> nearer =
       shadowedCounterparts (came_in, target, views.targetView (), hidden_source, source, views.sourceView (),
-                            source_on_static_surface, T_static, parameters);
+                            on_static_surface.source, T_static, parameters);
   for (std::size_t b = 0; b < came_in.size (); ++b)
     if (nearer[b] >= 0)
       pair (hidden_source[nearer[b]], came_in[b]);
@@ -316,11 +325,12 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
   const std::vector<MovedGroup> went_out = unpaired (moved_out, out_paired);
   const std::vector<MovedGroup> hidden_target = groupBySegment (
       target, target_segments,
-      hiddenFromTheOther (target, views.sourceView (), T_static.inverse (), withoutGroups (unclaimed, moved_in)),
+      markedByTheOther (target, views.sourceView (), T_static.inverse (), withoutGroups (unclaimed, moved_in),
+                        matching::hiddenBehindAReturn),
       Rigid2d::Identity ());
   const std::vector<int> farther =
       shadowedCounterparts (went_out, source, views.sourceView (), hidden_target, target, views.targetView (),
-                            target_on_static_surface, T_static.inverse (), parameters);
+                            on_static_surface.target, T_static.inverse (), parameters);
   for (std::size_t a = 0; a < went_out.size (); ++a)
     if (farther[a] >= 0)
       pair (went_out[a], hidden_target[farther[a]]);
