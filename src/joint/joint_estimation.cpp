@@ -372,6 +372,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   const detail::ScanViews views (source, target, segments, parameters.sensor);  // shared by the steps below
   if (parameters.remove_clusters_the_target_sees_through)
     detail::removeClustersTheTargetSeesThrough (views, result);
+  if (parameters.remove_clusters_on_the_static_outline)
+    detail::removeClustersOnTheStaticOutline (views, result);
   if (parameters.separate_objects_in_free_space)
     detail::separateObjectsInFreeSpace (views, result);
   if (parameters.separate_segments_the_target_sees_through)

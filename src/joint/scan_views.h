@@ -95,6 +95,9 @@ int
 removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult& result);
 
 int
+removeClustersOnTheStaticOutline (const ScanViews& views, JointResult& result);
+
+int
 separateObjectsInFreeSpace (const ScanViews& views, JointResult& result);
 
 int

@@ -128,7 +128,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  Last, clusters whose matches mostly repeat target points the static world explains
  *  are removed (removeClustersTheStaticWorldExplains ()), and so are clusters with more
  *  points the target saw through under their motion than matched points
- *  (removeClustersTheTargetSeesThrough ()); then objects the static motion puts where
+ *  (removeClustersTheTargetSeesThrough ()) and clusters the static motion puts on the
+ *  target's outline (removeClustersOnTheStaticOutline ()); then objects the static motion puts where
  *  the source saw through get clusters of their own (separateObjectsInFreeSpace ()),
  *  segments the static motion slides along themselves whose end the target saw
  *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
@@ -207,6 +208,28 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
 int
 removeClustersTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Removes every cluster but the static world that is the static world seen at
+ *  other places: more than half of its points, moved by the static motion, lie on the
+ *  target's outline (within 3 range_noise of the pieces between a target point and its
+ *  neighbours on the same target segment, matching::segmentScan () across missing
+ *  returns), and at least as many as its own motion puts there. A surface seen at
+ *  grazing incidence is sampled metres apart, so a motion that slides it by a whole
+ *  number of samples matches its points to target points as well as the static motion,
+ *  which puts them between the samples; and a moving object that slides along itself
+ *  alone (the aperture problem) is no evidence against the static world, the simpler
+ *  explanation. The removed clusters' points become outliers; the others keep their
+ *  order (renumbered largest first).
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the breakpoint angle and range noise (the matcher's segment parameters)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of clusters removed
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or with
+ *  \a source, or a match is not a target point. */
+int
+removeClustersOnTheStaticOutline (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                  const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Gives the static world's and the unclustered points that moved clusters of their
  *  own: a source point the static motion puts where the target sensor saw through to a

@@ -38,6 +38,10 @@ struct JointParameters
   /** true (default): clusters with more points the target saw through under their
    *  motion than matched points become outliers (removeClustersTheTargetSeesThrough ()). */
   bool remove_clusters_the_target_sees_through = true;
+  /** true (default): clusters whose points the static motion puts on the target's
+   *  outline, for more than half of them and at least as many as their own motion does,
+   *  become outliers (removeClustersOnTheStaticOutline ()). */
+  bool remove_clusters_on_the_static_outline = true;
   /** true (default): objects the static motion puts where the source saw through get a
    *  cluster of their own (separateObjectsInFreeSpace ()). */
   bool separate_objects_in_free_space = true;
