@@ -37,8 +37,9 @@ checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, c
                          const JointResult& result);
 
 /** Removes the clusters marked in \a removed (one flag per cluster): their points become
- *  outliers (kNoMatch, kOutlierCluster), the others are renumbered largest first. */
-void
+ *  outliers (kNoMatch, kOutlierCluster), the others are renumbered largest first.
+ *  \return the number of clusters removed (\a result is untouched when none is marked) */
+int
 removeClusters (const std::vector<bool>& removed, JointResult& result);
 
 /** Whether source point \a i of \a result is in the static world or among the outliers

@@ -73,16 +73,10 @@ detail::removeClustersOnTheStaticOutline (const ScanViews& views, JointResult& r
   const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster,
                                                            static_cast<int> (result.cluster_motions.size ()));
   std::vector<bool> removed (result.cluster_motions.size (), false);
-  int count = 0;
   for (std::size_t l = 0; l < removed.size (); ++l)
-    if (static_cast<int> (l) != result.static_cluster && 2 * under_static[l] > sizes[l] &&
-        under_static[l] >= under_own[l]) {
-      removed[l] = true;
-      ++count;
-    }
-  if (count > 0)
-    removeClusters (removed, result);
-  return count;
+    removed[l] = static_cast<int> (l) != result.static_cluster && 2 * under_static[l] > sizes[l] &&
+                 under_static[l] >= under_own[l];
+  return removeClusters (removed, result);
 }
 
 int

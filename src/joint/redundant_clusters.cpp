@@ -3,6 +3,7 @@
 
 #include "cluster_numbering.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace pcl_crf {
@@ -61,9 +62,12 @@ explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotion
 
 }  // namespace
 
-void
+int
 detail::removeClusters (const std::vector<bool>& removed, JointResult& result)
 {
+  const auto count = static_cast<int> (std::count (removed.begin (), removed.end (), true));
+  if (count == 0)
+    return 0;
   std::vector<int> rank (removed.size (), kOutlierCluster);
   std::vector<Rigid2d> motions;
   for (std::size_t l = 0; l < removed.size (); ++l)
@@ -82,6 +86,7 @@ detail::removeClusters (const std::vector<bool>& removed, JointResult& result)
   }
   result.static_cluster = rank[result.static_cluster];
   detail::numberLargestFirst (result);  // the sizes and the outlier list
+  return count;
 }
 
 int
@@ -94,13 +99,7 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
   const KnnIndex claimed = staticWorldTargets (target, result);
   if (claimed.size () == 0)
     return 0;
-  const std::vector<bool> removed = explainedClusters (target, parameters, claimed, result);
-  int count = 0;
-  for (bool r : removed)
-    count += r ? 1 : 0;
-  if (count > 0)
-    detail::removeClusters (removed, result);
-  return count;
+  return detail::removeClusters (explainedClusters (target, parameters, claimed, result), result);
 }
 
 }  // namespace joint

@@ -54,15 +54,9 @@ detail::removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult&
       kOutlierCluster);
   const FreeSpaceEvidence evidence = weighEvidence (views, attached, result);
   std::vector<bool> removed (result.cluster_motions.size (), false);
-  int count = 0;
   for (std::size_t l = 0; l < removed.size (); ++l)
-    if (evidence.seen_through[l] > evidence.matched[l]) {  // refuted by more points than support it
-      removed[l] = true;
-      ++count;
-    }
-  if (count > 0)
-    removeClusters (removed, result);
-  return count;
+    removed[l] = evidence.seen_through[l] > evidence.matched[l];  // refuted by more points than support it
+  return removeClusters (removed, result);
 }
 
 int

@@ -13,12 +13,11 @@ using pcl_crf::Rigid2d;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::removeClustersOnTheStaticOutline;
 
+/** The motion that moves every point by (\a x, \a y). */
 Rigid2d
 translation (double x, double y)
 {
-  Rigid2d T = Rigid2d::Identity ();
-  T.translation () = Eigen::Vector2d (x, y);
-  return T;
+  return Rigid2d (Eigen::Translation2d (x, y));
 }
 
 /** Points along y = \a y at x = first, first + step, ... (\a count of them), in beam order
