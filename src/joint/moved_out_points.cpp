@@ -304,15 +304,21 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
       pair (moved_out[a], moved_in[counterpart[a]]);
       out_paired[a] = in_paired[counterpart[a]] = true;
     }
-  const StaticSurface on_static_surface = staticSurface (source, target, T_static, parameters, result);
+  // The hidden views below are sought only for groups left without a counterpart.
+  const std::vector<MovedGroup> came_in = unpaired (moved_in, in_paired);
+  const std::vector<MovedGroup> went_out = unpaired (moved_out, out_paired);
+  const StaticSurface on_static_surface = came_in.empty () && went_out.empty ()
+                                              ? StaticSurface ()
+                                              : staticSurface (source, target, T_static, parameters, result);
   // An object that came nearer: its source view, under the static motion, hides behind
   // it in the target (no moved-out group).
-  const std::vector<MovedGroup> came_in = unpaired (moved_in, in_paired);
-  const std::vector<MovedGroup> hidden_source = groupBySegment (
-      source, views.sourceSegments (),
-      markedByTheOther (source, views.targetView (), T_static, withoutGroups (free, moved_out),
-                        matching::hiddenBehindAReturn),
-      T_static);
+  const std::vector<MovedGroup> hidden_source =
+      came_in.empty () ? std::vector<MovedGroup> ()
+                       : groupBySegment (source, views.sourceSegments (),
+                                         markedByTheOther (source, views.targetView (), T_static,
+                                                           withoutGroups (free, moved_out),
+                                                           matching::hiddenBehindAReturn),
+                                         T_static);
   const std::vector<int> nearer =
       shadowedCounterparts (came_in, target, views.targetView (), hidden_source, source, views.sourceView (),
                             on_static_surface.source, T_static, parameters);
@@ -322,12 +328,13 @@ detail::separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult&
   // An object that went farther: its target view, under the inverse static motion,
   // hides behind it in the source (no moved-in group). Unpaired moved-out groups can
   // also have left the view or hidden behind something else: they stay.
-  const std::vector<MovedGroup> went_out = unpaired (moved_out, out_paired);
-  const std::vector<MovedGroup> hidden_target = groupBySegment (
-      target, target_segments,
-      markedByTheOther (target, views.sourceView (), T_static.inverse (), withoutGroups (unclaimed, moved_in),
-                        matching::hiddenBehindAReturn),
-      Rigid2d::Identity ());
+  const std::vector<MovedGroup> hidden_target =
+      went_out.empty () ? std::vector<MovedGroup> ()
+                        : groupBySegment (target, target_segments,
+                                          markedByTheOther (target, views.sourceView (), T_static.inverse (),
+                                                            withoutGroups (unclaimed, moved_in),
+                                                            matching::hiddenBehindAReturn),
+                                          Rigid2d::Identity ());
   const std::vector<int> farther =
       shadowedCounterparts (went_out, source, views.sourceView (), hidden_target, target, views.targetView (),
                             on_static_surface.target, T_static.inverse (), parameters);

@@ -26,9 +26,11 @@ distanceToPiece (const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen
 
 /** Per cluster but the static world: how many of its points, each moved by \a motion_of
  *  its cluster, lie within \a radius of the target's outline: the pieces from its nearest
- *  target point to that point's neighbours on the same target segment. */
+ *  target point to that point's neighbours on the same target segment (\a segment_of,
+ *  per target point). */
 template <typename MotionOf> std::vector<int>
-pointsOnTheOutline (const detail::ScanViews& views, const JointResult& result, double radius, MotionOf motion_of)
+pointsOnTheOutline (const detail::ScanViews& views, const std::vector<int>& segment_of, const JointResult& result,
+                    double radius, MotionOf motion_of)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   const Eigen::Matrix2Xd& target = views.target ();
@@ -43,7 +45,6 @@ pointsOnTheOutline (const detail::ScanViews& views, const JointResult& result, d
   for (std::size_t k = 0; k < points.size (); ++k)
     moved.col (static_cast<Eigen::Index> (k)) = motion_of (result.source_cluster[points[k]]) * source.col (points[k]);
   const KnnIndex::Result nearest = views.targetPoints ().search (moved, 1);  // one batched query
-  const std::vector<int> segment_of = matching::segmentOfEachPoint (views.targetSegments (), target.cols ());
   for (std::size_t k = 0; k < points.size (); ++k) {
     const auto column = static_cast<Eigen::Index> (k);
     const int j = nearest.indices (0, column);
@@ -66,10 +67,12 @@ detail::removeClustersOnTheStaticOutline (const ScanViews& views, JointResult& r
     return 0;
   const double radius = 3.0 * views.parameters ().range_noise;
   const Rigid2d& T_static = result.cluster_motions[result.static_cluster];
+  const std::vector<int> segment_of =
+      matching::segmentOfEachPoint (views.targetSegments (), views.target ().cols ());
   const std::vector<int> under_static =
-      pointsOnTheOutline (views, result, radius, [&T_static] (int) { return T_static; });
-  const std::vector<int> under_own =
-      pointsOnTheOutline (views, result, radius, [&result] (int l) { return result.cluster_motions[l]; });
+      pointsOnTheOutline (views, segment_of, result, radius, [&T_static] (int) { return T_static; });
+  const std::vector<int> under_own = pointsOnTheOutline (views, segment_of, result, radius,
+                                                         [&result] (int l) { return result.cluster_motions[l]; });
   const std::vector<int> sizes = clustering::clusterSizes (result.source_cluster,
                                                            static_cast<int> (result.cluster_motions.size ()));
   std::vector<bool> removed (result.cluster_motions.size (), false);

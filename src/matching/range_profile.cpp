@@ -208,26 +208,25 @@ namespace {
  *  with the breakpoint distance at the smaller of its range and the point's. */
 enum class ReturnsNear
 {
-  None,     // no return within one step (or the point is out of view)
-  Farther,  // every one lies farther than the point by more than the breakpoint distance
-  Nearer,   // every one lies nearer than the point by more than the breakpoint distance
-  Mixed     // some lie within the breakpoint distance of the point, or on both sides
+  OutOfView,  // the point lies outside the field of view
+  None,       // no return within one step
+  Farther,    // every one lies farther than the point by more than the breakpoint distance
+  Nearer,     // every one lies nearer than the point by more than the breakpoint distance
+  Mixed       // some lie within the breakpoint distance of the point, or on both sides
 };
 
-/** Compares \a point with the returns within one step of its bearing (see ReturnsNear);
- *  \a inside tells whether it lies in the field of view (None otherwise). */
+/** Compares \a point with the returns within one step of its bearing (see ReturnsNear;
+ *  OutOfView as well for a profile that cannot tell: fewer than two returns, no step). */
 ReturnsNear
-compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
-                        bool& inside)
+compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
 {
   const Eigen::Index m = profile.bearings.size ();
   const double step = profile.step;
-  inside = false;
   if (m < 2 || !(step > 0.0) || !std::isfinite (distance.slope))
-    return ReturnsNear::None;
+    return ReturnsNear::OutOfView;
   const double theta = bearingFrom (profile, point);
-  if (!(inside = inField (profile, theta)))
-    return ReturnsNear::None;
+  if (!inField (profile, theta))
+    return ReturnsNear::OutOfView;
   const double range = point.norm ();
   const double margin = range * distance.slope + distance.offset;
   const Eigen::Index after = firstReturnNotBefore (profile, theta);
@@ -260,12 +259,12 @@ bool
 seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance,
                   bool empty_beams_free)
 {
-  bool inside = false;
-  switch (compareWithReturnsNear (profile, point, distance, inside)) {
+  switch (compareWithReturnsNear (profile, point, distance)) {
     case ReturnsNear::Farther: return true;
-    case ReturnsNear::None:
-      return inside && empty_beams_free && point.norm () + point.norm () * distance.slope + distance.offset <
-                                               profile.max_range;
+    case ReturnsNear::None: {
+      const double range = point.norm ();
+      return empty_beams_free && range + range * distance.slope + distance.offset < profile.max_range;
+    }
     default: return false;
   }
 }
@@ -296,8 +295,7 @@ seesThroughToAReturn (const RangeProfile& profile, const Eigen::Vector2d& point,
 bool
 hiddenBehindAReturn (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
 {
-  bool inside = false;
-  return compareWithReturnsNear (profile, point, distance, inside) == ReturnsNear::Nearer;
+  return compareWithReturnsNear (profile, point, distance) == ReturnsNear::Nearer;
 }
 
 }  // namespace matching
