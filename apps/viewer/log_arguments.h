@@ -60,7 +60,7 @@ struct LogArguments
 inline std::set<std::string>
 logValueOptions ()
 {
-  return {"--step", "--min-range", "--max-range", "--scan-topic", "--pose-topic", "--object-topics",
+  return {"--step", "--still-tolerance", "--min-range", "--max-range", "--scan-topic", "--pose-topic", "--object-topics",
           "--laser-offset", "--pose-delay"};
 }
 
@@ -72,6 +72,10 @@ printLogOptionsHelp ()
   print_info ("  --step N               pair scan k with scan k+N (default: 1, consecutive scans)\n");
   print_info ("  --label                give every point an object label and a true match from the\n"
               "                         reference poses (default: off; unlabelled pairs)\n");
+  print_info ("  --still-tolerance M    a tracked object no corner of whose footprint moves M or more\n"
+              "                         against the static world between a pair's scans stands still:\n"
+              "                         it is part of the static world there (default: 0.01 m, the\n"
+              "                         range noise; 0 keeps every tracked object)\n");
   print_info (" CARMEN logs (.log, .log.gz; FLASER, ROBOTLASER1, ODOM):\n");
   print_info ("  --min-range M          shortest valid reading [m] (default: 0.01)\n");
   print_info ("  --max-range M          longest valid reading [m] (default: 30; 81.9, 50, 32.76 = no return)\n");
@@ -96,6 +100,12 @@ parseLogArguments (int argc, char** argv, LogArguments& args)
     return false;
   args.pairs.step = static_cast<std::size_t> (step);
   args.pairs.label_points = pcl::console::find_switch (argc, argv, "--label");
+  if (!numberOption (argc, argv, "--still-tolerance", args.pairs.still_tolerance))
+    return false;
+  if (!(args.pairs.still_tolerance >= 0.0)) {
+    pcl::console::print_error ("--still-tolerance needs a distance of at least 0 [m].\n");
+    return false;
+  }
   CarmenReadOptions& carmen = args.read.carmen;
   if (!numberOption (argc, argv, "--min-range", carmen.min_range) ||
       !numberOption (argc, argv, "--max-range", carmen.max_range))

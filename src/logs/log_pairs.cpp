@@ -19,8 +19,9 @@ checkOptions (const LogPairOptions& options)
       !(options.no_odometry_translation_std > 0.0) || !(options.no_odometry_rotation_std > 0.0))
     throw LogError ("[pcl_crf::makeLogPair] noise-model factors must not be negative and the minimum "
                     "standard deviations must be positive");
-  if (!(options.range_noise >= 0.0) || !(options.footprint_margin >= 0.0))
-    throw LogError ("[pcl_crf::makeLogPair] the range noise and footprint margin must not be negative");
+  if (!(options.range_noise >= 0.0) || !(options.footprint_margin >= 0.0) || !(options.still_tolerance >= 0.0))
+    throw LogError ("[pcl_crf::makeLogPair] the range noise, footprint margin and still tolerance must not be "
+                    "negative");
 }
 
 Odometry
@@ -48,6 +49,22 @@ insideFootprint (const Eigen::Vector2d& p, const Rigid2d& T_object_sensor, const
 {
   const Eigen::Vector2d q = T_object_sensor * p;
   return std::abs (q.x ()) <= half_extent.x () && std::abs (q.y ()) <= half_extent.y ();
+}
+
+/** true when no corner of the footprint (object frame, \a half_extent) moves \a tolerance
+ *  or farther between \a T_object and \a T_world: the displacement (R_o − R_w) p + t_o − t_w
+ *  is affine in p, so its norm peaks at a corner of the rectangle. */
+bool
+standsStill (const Rigid2d& T_object, const Rigid2d& T_world, const Rigid2d& T_source_object,
+             const Eigen::Vector2d& half_extent, double tolerance)
+{
+  for (const double sx : {-1.0, 1.0})
+    for (const double sy : {-1.0, 1.0}) {
+      const Eigen::Vector2d corner = T_source_object * Eigen::Vector2d (sx * half_extent.x (), sy * half_extent.y ());
+      if ((T_object * corner - T_world * corner).norm () >= tolerance)
+        return false;
+    }
+  return true;
 }
 
 struct ObjectAtPair
@@ -92,9 +109,13 @@ addTruth (const LaserLog& log, const LaserScanRecord& s, const LaserScanRecord& 
     truth.id = static_cast<int> (k) + 1;
     truth.kind = object.kind;
     truth.T_target_source = t.pose.inverse () * O_t * O_s.inverse () * s.pose;
-    pair.objects.push_back (truth);
     const Eigen::Vector2d margin = Eigen::Vector2d::Constant (options.footprint_margin);
-    tracked.push_back ({truth.id, O_s.inverse () * s.pose, O_t.inverse () * t.pose, object.half_extent + margin});
+    const ObjectAtPair at{truth.id, O_s.inverse () * s.pose, O_t.inverse () * t.pose, object.half_extent + margin};
+    if (standsStill (truth.T_target_source, world.T_target_source, at.T_object_source.inverse (), at.half_extent,
+                     options.still_tolerance))
+      continue;  // a parked car: part of the static world
+    pair.objects.push_back (truth);
+    tracked.push_back (at);
   }
   if (!options.label_points)
     return;

@@ -147,6 +147,43 @@ TEST (LogPairs, LabelsFollowFootprintsAndTheTrueAssociationRule)
     EXPECT_EQ (pair.source_match[i], i) << i;
 }
 
+/** threeScanLog with the car's track replaced: pose (x, 2, theta (stamp)) from stamp 10 to 12. */
+pcl_crf::LaserLog
+logWithCarTrack (double speed, double turn_rate)
+{
+  pcl_crf::LaserLog log = threeScanLog ();
+  log.objects.front ().track = {};
+  for (int k = 0; k <= 20; ++k)
+    log.objects.front ().track.append (10.0 + 0.1 * k, makeRigid2d (0.95 + speed * 0.1 * k, 2.0, turn_rate * 0.1 * k));
+  return log;
+}
+
+TEST (LogPairs, ACarStandingStillIsPartOfTheStaticWorld)
+{
+  pcl_crf::LogPairOptions options;
+  options.label_points = true;
+  // parked: the world only, its points labelled static
+  const pcl_crf::ScanPair parked = pcl_crf::makeLogPair (logWithCarTrack (0.0, 0.0), 0, options);
+  ASSERT_EQ (parked.objects.size (), 1u);
+  EXPECT_TRUE (parked.objects[0].is_static);
+  for (int i = 10; i < 14; ++i)
+    EXPECT_EQ (parked.source_object[i], 0) << i;
+  EXPECT_NO_THROW (pcl_crf::validateScanPair (parked, "parked car"));
+  // 9 mm in the 1 s between the scans: below the 1 cm tolerance; 11 mm: a mover
+  EXPECT_EQ (pcl_crf::makeLogPair (logWithCarTrack (0.009, 0.0), 0, options).objects.size (), 1u);
+  const pcl_crf::ScanPair creeping = pcl_crf::makeLogPair (logWithCarTrack (0.011, 0.0), 0, options);
+  ASSERT_EQ (creeping.objects.size (), 2u);
+  EXPECT_EQ (creeping.source_object[12], 1);
+  // turning in place by 0.05 rad swings the grown footprint's corners (0.25 x 0.15 m) by
+  // 0.05 * 0.29 = 15 mm: a mover, though its centre stays put
+  EXPECT_EQ (pcl_crf::makeLogPair (logWithCarTrack (0.0, 0.05), 0, options).objects.size (), 2u);
+  // tolerance 0 keeps even the parked car
+  options.still_tolerance = 0.0;
+  EXPECT_EQ (pcl_crf::makeLogPair (logWithCarTrack (0.0, 0.0), 0, options).objects.size (), 2u);
+  options.still_tolerance = -0.01;
+  EXPECT_THROW (pcl_crf::makeLogPair (logWithCarTrack (0.0, 0.0), 0, options), pcl_crf::LogError);
+}
+
 TEST (LogPairs, UntrackedOrPoselessPairs)
 {
   pcl_crf::LaserLog log = threeScanLog ();

@@ -65,6 +65,12 @@ struct LogPairOptions
   double range_noise = 0.01;
   /** footprint growth when labelling tracked objects' points [m] (default 0.05). */
   double footprint_margin = 0.05;
+  /** a tracked object stands still in a pair when no corner of its footprint (grown
+   *  by footprint_margin) moves this far or farther relative to the static world
+   *  between the two scans [m]; it is then part of the static world, not an object
+   *  of the pair (a parked car is no mover). Default 0.01, the range noise: a pair
+   *  cannot show a smaller motion. 0 keeps every tracked object. */
+  double still_tolerance = 0.01;
 };
 
 /** \brief Number of pairs (k, k + step) a log of \a scan_count scans holds. */
@@ -83,8 +89,9 @@ logPairCount (std::size_t scan_count, std::size_t step);
  *    world), the static world (id 0, "world", T_target_source = inv(P_t) * P_s,
  *    the inverse of the reference ego motion) and every tracked object whose
  *    pose O is known at both stamps (ids 1, 2, ... in the order of
- *    LaserLog::objects, T_target_source = inv(P_t) * O_t * inv(O_s) * P_s);
- *    otherwise none. With labels, tracked objects no point hit are left out.
+ *    LaserLog::objects, T_target_source = inv(P_t) * O_t * inv(O_s) * P_s) that
+ *    does not stand still (options.still_tolerance); otherwise none. With labels,
+ *    tracked objects no point hit are left out.
  *  - labels and matches only with options.label_points (then the pair passes
  *    validateScanPair and can be saved with saveScanPair); otherwise they stay
  *    empty and ScanPair::hasTruth () is false: an *unlabelled* pair, whose
