@@ -7,6 +7,8 @@
 #include "cluster_numbering.h"
 #include "scan_views.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <string>
@@ -60,21 +62,43 @@ private:
   const detail::ScanViews& views_;
 };
 
+/** Per point of a segment placed in the target frame (\a points, in the segment's
+ *  order): whether the target's beam to it grazes the segment, meeting its local
+ *  direction (through its neighbours on the segment) at less than the breakpoint angle.
+ *  There a range difference of a few centimetres moves the surface by whole beams, so
+ *  neither a return beyond the point nor one on it tells whether the segment is there. */
+std::vector<bool>
+grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
+{
+  const Eigen::Index n = points.cols ();
+  const double least_sine = std::sin (breakpoint_angle);
+  std::vector<bool> grazed (static_cast<std::size_t> (n), false);
+  for (Eigen::Index k = 0; k < n && n > 1; ++k) {
+    const Eigen::Vector2d along = points.col (std::min (k + 1, n - 1)) - points.col (std::max<Eigen::Index> (k - 1, 0));
+    const Eigen::Vector2d& beam = points.col (k);
+    const double scale = along.norm () * beam.norm ();
+    grazed[k] = scale > 0.0 && std::abs (along.x () * beam.y () - along.y () * beam.x ()) < least_sine * scale;
+  }
+  return grazed;
+}
+
 /** What the target says of each point of a segment placed by one motion. */
 struct Placement
 {
   Eigen::Matrix2Xd points;  // target frame
   KnnIndex::Result nearest;
-  std::vector<bool> in_view, explained, seen_through;
+  std::vector<bool> in_view, explained, seen_through;  // in_view: in the field of view and not grazed
 };
 
 Placement
-place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const TargetView& view)
+place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const TargetView& view,
+       double breakpoint_angle)
 {
   Placement p{std::move (points), {}, {}, {}, {}};
   p.nearest = view.nearest (p.points);
+  const std::vector<bool> grazed = grazedPoints (p.points, breakpoint_angle);
   for (Eigen::Index k = 0; k < p.points.cols (); ++k) {
-    p.in_view.push_back (view.inView (p.points.col (k)));
+    p.in_view.push_back (!grazed[k] && view.inView (p.points.col (k)));
     p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
     p.seen_through.push_back (view.seesThrough (p.points.col (k)));
   }
@@ -171,11 +195,11 @@ bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
       matching::endAlignments (at_static.col (0), at_static.col (segment.size () - 1),
                                matching::objectEnds (source, segment), view.target (), view.segments (), parameters);
   const std::vector<double> radii_squared = squaredRadii (source, segment, parameters);
-  const Placement static_placement = place (at_static, radii_squared, view);
+  const Placement static_placement = place (at_static, radii_squared, view, parameters.breakpoint_angle);
   Slide best;
   std::vector<std::pair<int, Eigen::Vector2d>> qualifying;  // gain, shift
   for (std::size_t h = 1; h < shifts.size (); ++h) {  // shifts[0] is the static motion itself
-    Placement shifted = place (at_static.colwise () + shifts[h], radii_squared, view);
+    Placement shifted = place (at_static.colwise () + shifts[h], radii_squared, view, parameters.breakpoint_angle);
     const Comparison c (static_placement, shifted);
     if (!c.dominates ())
       continue;
@@ -221,9 +245,10 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
     if (segment.size () < parameters.min_segment_points || !outsideMovingClusters (segment, result))
       continue;
     const Eigen::Matrix2Xd at_static = T_static * source.middleCols (segment.begin, segment.size ());
+    const std::vector<bool> grazed = grazedPoints (at_static, parameters.breakpoint_angle);
     int seen_through = 0;
     for (Eigen::Index k = 0; k < at_static.cols (); ++k)
-      seen_through += view.seesThrough (at_static.col (k)) ? 1 : 0;
+      seen_through += !grazed[k] && view.seesThrough (at_static.col (k)) ? 1 : 0;
     if (seen_through < min_seen_through)
       continue;
     const Slide slide = bestSlide (source, segment, at_static, parameters, view);
