@@ -351,16 +351,29 @@ refineNarrowRun (const ShiftSearch& search, const ShiftGrid& grid, int low, int 
   return true;
 }
 
-/** The shift along the axis that both sensors' free space allows best: the run of
- *  shifts with the fewest points seen through (searchGrid (); a narrow one refined by
- *  refineNarrowRun ()), its ends refined, and
- *  \a shift its middle (slid too little, the target's end sticks out where the source
- *  saw through; too far, the source's end sticks out where the target saw through).
+/** The shifts along the axis that both sensors' free space allows best, [from, to]:
+ *  slid too little, the target's end sticks out where the source saw through; too far,
+ *  the source's end sticks out where the target saw through. */
+struct FreeSpaceRun
+{
+  double from = 0.0;
+  double to = 0.0;
+
+  /** The slide taken: free space tells no shift of the run from another. */
+  double
+  middle () const
+  {
+    return 0.5 * (from + to);
+  }
+};
+
+/** The run of shifts with the fewest points seen through (searchGrid (); a narrow one
+ *  refined by refineNarrowRun ()), its ends refined.
  *  \return false unless the run has fewer such points than the static motion
  *  (\a static_count) and ends within reach on both sides (otherwise the motion along
  *  the axis is not observed). */
 bool
-freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
+freeSpaceRun (const ShiftSearch& search, int static_count, FreeSpaceRun& run)
 {
   if (!(search.coarse_step > 0.0) || !(search.fine_step > 0.0) || !(search.reach > 0.0))
     return false;
@@ -380,10 +393,29 @@ freeSpaceShift (const ShiftSearch& search, int static_count, double& shift)
   }
   if (2 * fewest > static_count || static_count - fewest < 2)  // resolves at least two, and half, of them
     return false;
-  const double from = refineEdge (search, inside_low, outside_low, fewest);
-  const double to = refineEdge (search, inside_high, outside_high, fewest);
-  shift = 0.5 * (from + to);
+  run.from = refineEdge (search, inside_low, outside_low, fewest);
+  run.to = refineEdge (search, inside_high, outside_high, fewest);
   return true;
+}
+
+/** Whether a shift of \a run, its middle first and then outwards at the segment's point
+ *  spacing (search.finest_step), lands at least \a count of the object's points on the
+ *  segment (landedTargetPoints ()). Within the run free space does not place the object,
+ *  and points sampled along a side land on the target's samples only at some shifts. */
+bool
+landsAtLeast (const ShiftSearch& search, const FreeSpaceRun& run, int count)
+{
+  const auto lands = [&] (double shift) {
+    const std::vector<int> landed = landedTargetPoints (search.scene, search.object, search.motion (shift));
+    return landedOnSegment (search.scene, landed, search.segment) >= count;
+  };
+  if (lands (run.middle ()))
+    return true;
+  const double half = 0.5 * (run.to - run.from);
+  for (double offset = search.finest_step; search.finest_step > 0.0 && offset <= half; offset += search.finest_step)
+    if (lands (run.middle () - offset) || lands (run.middle () + offset))
+      return true;
+  return false;
 }
 
 /** The upper median of \a values (not empty). */
@@ -490,7 +522,7 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
     if (static_cast<int> (object.size ()) < parameters.min_segment_points)
       continue;
     const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
-    if (seen_through < 2)  // freeSpaceShift () must resolve two
+    if (seen_through < 2)  // freeSpaceRun () must resolve two
       continue;
     const matching::ScanSegment& segment = target_segments[g];
     const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
@@ -507,13 +539,12 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
                              std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
                              segmentMedian (scene.target_spacing, segment),
                              shiftReach (scene, object, segment, T_static, axis)};
-    double shift = 0.0;
-    if (!freeSpaceShift (search, seen_through, shift))
+    FreeSpaceRun run;
+    if (!freeSpaceRun (search, seen_through, run) ||
+        !landsAtLeast (search, run, explainedByStatic (scene, object, g, static_target)))
       continue;
-    const Rigid2d T_moved = search.motion (shift);
+    const Rigid2d T_moved = search.motion (run.middle ());
     const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
-    if (landedOnSegment (scene, landed, g) < explainedByStatic (scene, object, g, static_target))
-      continue;
     addCluster (scene, object, g, T_moved, landed, result);
     ++added;
   }

@@ -332,9 +332,11 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
  *  source's end sticks out where the target saw through). The object becomes a new
  *  cluster when that run ends within reach on both sides (the slide is observed),
  *  resolves at least two and at least half of the static motion's points seen through
- *  (a lone mixed pixel is no evidence) and puts at least as many object points on the
- *  segment: its points on the segment take their nearest target point, the others no
- *  match. Clusters are renumbered largest first.
+ *  (a lone mixed pixel is no evidence) and some shift of the run (its middle, then
+ *  outwards at the segment's point spacing: free space does not place the object within
+ *  the run) puts at least as many object points on the segment as the static motion:
+ *  its points on the segment under the middle's motion take their nearest target point,
+ *  the others no match. Clusters are renumbered largest first.
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] parameters segmentation, overlap radius and largest displacement (the
