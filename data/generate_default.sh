@@ -23,6 +23,9 @@
 #                    range (pcl_crf_simulate --no-return-points; default 0: left out)
 #                    These five give harder splits of the same streets
 #                    (scripts/robustness_table.sh).
+#   SCENE            the street's traffic (pcl_crf_simulate --scene: mixed, crossing,
+#                    opposite, overtaking, outline, pedestrians, static; default mixed,
+#                    as shipped): one kind of mover at a time (scripts/robustness_table.sh).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -49,6 +52,8 @@ for value in "$noise" "$dropout" "$yaw_rate"; do
   [[ "$value" =~ ^-?$number$ ]] || { echo "generate_default.sh: NOISE, DROPOUT and YAW_RATE must be decimal numbers, got '$value'" >&2; exit 1; }
 done
 [[ "$odom_noise" =~ ^$number,$number,$number$ ]] || { echo "generate_default.sh: ODOM_NOISE must be X,Y,YAW (three non-negative numbers), got '$odom_noise'" >&2; exit 1; }
+scene=${SCENE:-mixed}
+[[ "$scene" =~ ^[a-z]+$ ]] || { echo "generate_default.sh: SCENE must be a scene name (see pcl_crf_simulate -h), got '$scene'" >&2; exit 1; }
 extra=()
 case "${NO_RETURN_POINTS:-0}" in
   0) ;;
@@ -58,7 +63,7 @@ esac
 
 # Every setting spelled out, so a change of a default does not change the dataset.
 common=(--pairs 30 --beams "$beams" --fov "$fov" --range 30 --noise "$noise" --dropout "$dropout"
-        --speed 10 --yaw-rate "$yaw_rate" --scene mixed --moving -1 --object-speed -1
+        --speed 10 --yaw-rate "$yaw_rate" --scene "$scene" --moving -1 --object-speed -1
         --spacing travel --travel 2,4 --odom-noise "$odom_noise" --legs 0.5
         --name-prefix pair_ "${extra[@]}")
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Scores the shipped models on harder versions of the default dataset's streets, one
 # condition changed at a time: more range noise, more beams without a return, worse
-# odometry, a turning sensor, and a dataset that kept its beams without a return as
-# points at the maximum range (which the methods leave out). Each condition is a fresh split (data/generate_default.sh
+# odometry, a turning sensor, a dataset that kept its beams without a return as
+# points at the maximum range (which the methods leave out), and streets with one kind
+# of traffic only (crossing, oncoming, overtaking, cars along their own outline,
+# pedestrians) or none. Each condition is a fresh split (data/generate_default.sh
 # with the condition's setting, seeds no model has seen), scored with pcl_crf_eval;
 # one Markdown table, a row per condition and method.
 #
@@ -27,6 +29,12 @@ conditions=(
   "odometry noise ×3|ODOM_NOISE=0.3,0.15,0.06"
   "turning at 0.3 rad/s|YAW_RATE=0.3"
   "beams without a return kept as points at the maximum range|NO_RETURN_POINTS=1"
+  "crossing traffic only|SCENE=crossing"
+  "oncoming traffic only|SCENE=opposite"
+  "overtaking traffic only|SCENE=overtaking"
+  "cars along their own outline only|SCENE=outline"
+  "pedestrians only|SCENE=pedestrians"
+  "no mover|SCENE=static"
 )
 
 header=1
