@@ -23,4 +23,5 @@ END {
            fmt(value[m, "ego_translation_error"]), fmt(value[m, "moving_translation_error"])
   }
 }
-function fmt(v) { return v == "" ? "-" : sprintf("%.3f", v) }
+# "-" where the CSV has no value: a metric over no object (null; awk would print 0.000)
+function fmt(v) { return v == "" || v == "null" || tolower (v) == "nan" ? "-" : sprintf("%.3f", v) }
