@@ -380,6 +380,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     detail::separateSegmentsTheTargetSeesThrough (views, parameters.segment_min_points_seen_through, result);
   if (parameters.separate_points_the_target_sees_through)
     detail::separatePointsTheTargetSeesThrough (views, result);
+  if (parameters.merge_adjacent_clusters_that_move_alike)
+    detail::mergeAdjacentClustersThatMoveAlike (views, result);
   if (parameters.separate_distant_parts)
     separateDistantParts (source, parameters.part_gap, result);
   return result;

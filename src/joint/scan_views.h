@@ -106,6 +106,9 @@ separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_throu
 int
 separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result);
 
+int
+mergeAdjacentClustersThatMoveAlike (const ScanViews& views, JointResult& result);
+
 }  // namespace detail
 }  // namespace joint
 }  // namespace pcl_crf

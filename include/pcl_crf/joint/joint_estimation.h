@@ -135,8 +135,10 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
  *  do points that moved out of where the static motion puts them, paired with points
  *  that moved in or with the object's other view hidden behind it
- *  (separatePointsTheTargetSeesThrough ()); last, a moving cluster whose
- *  points lie in parts far apart becomes one cluster per part (separateDistantParts ()).
+ *  (separatePointsTheTargetSeesThrough ()); then moving clusters that meet on one
+ *  surface and move alike become one (mergeAdjacentClustersThatMoveAlike ()); last, a
+ *  moving cluster whose points lie in parts far apart becomes one cluster per part
+ *  (separateDistantParts ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -356,6 +358,26 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
  *  and the sensor's motion. */
 Prediction
 toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
+
+/** \brief Merges moving clusters that meet on one surface and move alike: two clusters
+ *  holding consecutive points of one source segment (matching::segmentScan (), no
+ *  breakpoint between them: one continuous surface) become one when the larger one's
+ *  motion places every point of the smaller within its overlap radius
+ *  (matching::overlapRadius () of its spacing on its segment) of where the smaller
+ *  one's own motion does. The merged cluster keeps the larger one's motion; matches
+ *  are untouched. Steps that each separate part of one vehicle (the free space at its
+ *  ends, the ladder's clusters in the middle) leave such neighbours. Runs until no pair
+ *  is left; clusters are renumbered largest first.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] parameters the breakpoint angle and range noise (segmentation) and the
+ *             overlap radius (the matcher's segment parameters)
+ *  \param[in,out] result a joint result over \a source
+ *  \return the number of clusters merged away (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or
+ *  with \a source. */
+int
+mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source,
+                                    const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Splits every moving cluster whose points lie in parts more than \a gap apart
  *  into one cluster per part, each with the cluster's motion: objects that happen to

@@ -56,6 +56,10 @@ struct JointParameters
   /** the fewest points of a segment the target must see through under the static
    *  motion before a shift of it is sought (one point alone may be range noise). */
   int segment_min_points_seen_through = 2;
+  /** true (default): moving clusters that hold consecutive points of one source segment
+   *  and whose motions place the smaller one's points alike become one
+   *  (mergeAdjacentClustersThatMoveAlike ()). */
+  bool merge_adjacent_clusters_that_move_alike = true;
   /** true (default): a moving cluster whose points lie in parts more than part_gap
    *  apart becomes one cluster per part, each with its motion (separateDistantParts ()). */
   bool separate_distant_parts = true;

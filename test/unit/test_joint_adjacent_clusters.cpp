@@ -1,0 +1,137 @@
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/segment_motions.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+using pcl_crf::kNoMatch;
+using pcl_crf::kOutlierCluster;
+using pcl_crf::Rigid2d;
+using pcl_crf::joint::JointResult;
+using pcl_crf::joint::mergeAdjacentClustersThatMoveAlike;
+
+/** The motion that moves every point by (\a x, \a y). */
+Rigid2d
+translation (double x, double y)
+{
+  return Rigid2d (Eigen::Translation2d (x, y));
+}
+
+/** A wall ahead along y = 6 (x from 4 down to −4, 0.2 m apart: 41 points, the static
+ *  world), then a car's side to the left along y = 2 (x from 0 down to −3.8, 0.2 m
+ *  apart: 20 points), in beam order. */
+Eigen::Matrix2Xd
+wallAndCar ()
+{
+  Eigen::Matrix2Xd points (2, 61);
+  for (int k = 0; k < 41; ++k)
+    points.col (k) << 4.0 - 0.2 * k, 6.0;
+  for (int k = 0; k < 20; ++k)
+    points.col (41 + k) << -0.2 * k, 2.0;
+  return points;
+}
+
+/** The wall in the static world (identity), the car's first ten points in cluster 1
+ *  (motion \a front) and its last ten in cluster 2 (motion \a back); every point matched
+ *  to itself. */
+JointResult
+carInTwo (const Rigid2d& front, const Rigid2d& back)
+{
+  JointResult result;
+  result.cluster_motions = {Rigid2d::Identity (), front, back};
+  result.static_cluster = 0;
+  for (int i = 0; i < 61; ++i) {
+    result.source_cluster.push_back (i < 41 ? 0 : i < 51 ? 1 : 2);
+    result.source_match.push_back (i);
+  }
+  return result;
+}
+
+int
+count (const std::vector<int>& labels, int label)
+{
+  return static_cast<int> (std::count (labels.begin (), labels.end (), label));
+}
+
+TEST (JointAdjacentClusters, TwoHalvesOfACarThatMoveAlikeBecomeOne)
+{
+  // 0.2 m spacing: overlap radius min(0.15, max(0.03, 2 · 0.2)) = 0.15 m. Halves 0.1 m
+  // apart in their motions are one car; the larger (here the first, of equal size)
+  // keeps its motion.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = carInTwo (translation (1.0, 0.0), translation (1.1, 0.0));
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, result), 1);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  const int car = result.source_cluster[41];
+  EXPECT_NE (car, result.static_cluster);
+  EXPECT_EQ (count (result.source_cluster, car), 20);
+  EXPECT_EQ (count (result.source_cluster, result.static_cluster), 41);
+  EXPECT_TRUE (result.cluster_motions[car].isApprox (translation (1.0, 0.0)));
+  for (int i = 0; i < 61; ++i)
+    EXPECT_EQ (result.source_match[i], i) << i;  // matches untouched
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{41, 20}));
+}
+
+TEST (JointAdjacentClusters, ClustersThatMoveApartOrDoNotMeetOnOneSurfaceStay)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  // 0.2 m apart in their motions: beyond the 0.15 m overlap radius.
+  JointResult apart = carInTwo (translation (1.0, 0.0), translation (1.2, 0.0));
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, apart), 0);
+  EXPECT_EQ (apart.cluster_motions.size (), 3u);
+  // A rotation about the car's front that swings its back 0.19 m apart.
+  const Rigid2d turned = Eigen::Translation2d (0.0, 2.0) * Eigen::Rotation2Dd (0.05) * Eigen::Translation2d (0.0, -2.0);
+  JointResult swung = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0) * turned);
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, swung), 0);
+  // A static point between them: they do not meet.
+  JointResult separated = carInTwo (translation (1.0, 0.0), translation (1.05, 0.0));
+  separated.source_cluster[51] = 0;
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, separated), 0);
+  // Nor through an outlier.
+  separated.source_cluster[51] = kOutlierCluster;
+  separated.source_match[51] = kNoMatch;
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, separated), 0);
+  // The car's halves on two surfaces: its back half half as far again along the same
+  // bearings, 1.6 m beyond the front's last point, past a breakpoint.
+  Eigen::Matrix2Xd two_surfaces = wallAndCar ();
+  for (int i = 51; i < 61; ++i)
+    two_surfaces.col (i) *= 1.5;
+  JointResult split = carInTwo (translation (1.0, 0.0), translation (1.05, 0.0));
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (two_surfaces, parameters, split), 0);
+  // The static world is never merged into, however alike: the wall meets no moving cluster.
+  JointResult one_moving = carInTwo (translation (0.0, 0.0), translation (0.0, 0.0));
+  for (int i = 41; i < 61; ++i)
+    one_moving.source_cluster[i] = 1;
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, one_moving), 0);
+}
+
+TEST (JointAdjacentClusters, ChainsMergeLargestFirstAndBadResultsAreRejected)
+{
+  // Three clusters along the car (6, 8 and 6 points), each 0.1 m from the next in its
+  // motion: the middle (largest) takes both neighbours, each within 0.15 m of it.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = carInTwo (translation (1.0, 0.0), translation (1.1, 0.0));
+  result.cluster_motions.push_back (translation (1.2, 0.0));
+  for (int i = 41; i < 61; ++i)
+    result.source_cluster[i] = i < 47 ? 1 : i < 55 ? 2 : 3;
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, result), 2);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  EXPECT_TRUE (result.cluster_motions[result.source_cluster[41]].isApprox (translation (1.1, 0.0)));
+
+  JointResult no_static = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
+  no_static.static_cluster = -1;
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, no_static), 0);
+  JointResult short_result = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
+  short_result.source_cluster.pop_back ();
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, short_result), std::invalid_argument);
+  JointResult bad_cluster = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
+  bad_cluster.source_cluster[45] = 7;
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, bad_cluster), std::invalid_argument);
+}
+
+}  // namespace
