@@ -9,6 +9,13 @@
 namespace pcl_crf {
 namespace test {
 
+/** The motion that moves every point by (\a x, \a y). */
+inline Rigid2d
+translation (double x, double y)
+{
+  return Rigid2d (Eigen::Translation2d (x, y));
+}
+
 /** \a points as the columns of a 2 x N matrix, in order. */
 inline Eigen::Matrix2Xd
 asColumns (const std::vector<Eigen::Vector2d>& points)

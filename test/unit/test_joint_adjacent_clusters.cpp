@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scene.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <vector>
@@ -12,15 +14,9 @@ namespace {
 using pcl_crf::kNoMatch;
 using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
+using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::mergeAdjacentClustersThatMoveAlike;
-
-/** The motion that moves every point by (\a x, \a y). */
-Rigid2d
-translation (double x, double y)
-{
-  return Rigid2d (Eigen::Translation2d (x, y));
-}
 
 /** A wall ahead along y = 6 (x from 4 down to −4, 0.2 m apart: 41 points, the static
  *  world), then a car's side to the left along y = 2 (x from 0 down to −3.8, 0.2 m

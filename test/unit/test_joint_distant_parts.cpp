@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scene.h"
+
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -12,6 +14,7 @@ namespace {
 using pcl_crf::kNoMatch;
 using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
+using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::separateDistantParts;
 
@@ -27,14 +30,6 @@ addRun (Eigen::Matrix2Xd& source, JointResult& result, int cluster, double x, do
     result.source_cluster.push_back (cluster);
     result.source_match.push_back (static_cast<int> (first + k));
   }
-}
-
-Rigid2d
-translation (double x, double y)
-{
-  Rigid2d T = Rigid2d::Identity ();
-  T.translation () = Eigen::Vector2d (x, y);
-  return T;
 }
 
 /** The static world (cluster 0): two walls 20 m apart, 30 points each. Cluster 1, moving

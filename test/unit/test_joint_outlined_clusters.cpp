@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scene.h"
+
 #include <stdexcept>
 #include <vector>
 
@@ -10,15 +12,9 @@ namespace {
 using pcl_crf::kNoMatch;
 using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
+using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::removeClustersOnTheStaticOutline;
-
-/** The motion that moves every point by (\a x, \a y). */
-Rigid2d
-translation (double x, double y)
-{
-  return Rigid2d (Eigen::Translation2d (x, y));
-}
 
 /** Points along y = \a y at x = first, first + step, ... (\a count of them), in beam order
  *  for a sensor at the origin (counter-clockwise: x decreasing when y > 0). */

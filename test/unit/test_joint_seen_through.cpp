@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scene.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +15,7 @@ namespace {
 using pcl_crf::kNoMatch;
 using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
+using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
 using pcl_crf::joint::removeClustersTheTargetSeesThrough;
 using pcl_crf::joint::separatePointsTheTargetSeesThrough;
@@ -125,14 +128,6 @@ sceneResult (const Scene& scene, const Rigid2d& T_board, int board_matched)
                                        : nearestPoint (scene.target, result.cluster_motions[cluster] * scene.source.col (i)));
   }
   return result;
-}
-
-Rigid2d
-translation (double x, double y)
-{
-  Rigid2d T = Rigid2d::Identity ();
-  T.translation () = Eigen::Vector2d (x, y);
-  return T;
 }
 
 TEST (JointRefutedClusters, AClusterWhoseMotionSweepsItsSegmentThroughTheTargetsViewBecomesOutliers)

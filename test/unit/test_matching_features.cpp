@@ -135,15 +135,18 @@ TEST (MatchingShapeNeighbours, ReusedNeighboursEqualAFreshSearch)
     const pcl_crf::KnnIndex::Result spare = shapes.search (after, k + 1);
     const int proven = static_cast<int> (
         (reused.outside_distance.array () < spare.squared_distances.row (k).transpose ().array ().sqrt () - 1e-9).count ());
-    if (step <= 0.01)
+    if (step <= 0.01) {
       EXPECT_GT (proven, 200) << "step " << step;  // 233 and more of 300 here
-    if (step >= 3.0)
+    }
+    if (step >= 3.0) {
       EXPECT_EQ (proven, 0);
+    }
     // The bound holds: no target point outside a column is nearer than outside_distance.
     for (Eigen::Index i = 0; i < after.cols (); ++i)
       for (Eigen::Index j = 0; j < shapes.size (); ++j)
-        if ((reused.indices.col (i).array () != j).all ())
+        if ((reused.indices.col (i).array () != j).all ()) {
           EXPECT_GE ((after.col (i) - shapes.points ().col (j)).norm (), reused.outside_distance (i) - 1e-12);
+        }
     // A second move chains from the first.
     const Eigen::MatrixXd again = after + 0.01 * random (dimension, 300);
     EXPECT_EQ (m::updateShapeNeighbours (reused, again, shapes, k).indices.topRows (k), shapes.search (again, k).indices);
