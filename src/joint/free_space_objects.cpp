@@ -399,12 +399,14 @@ freeSpaceRun (const ShiftSearch& search, int static_count, FreeSpaceRun& run)
 }
 
 /** Whether a shift of \a run, its middle first and then outwards at the segment's point
- *  spacing (search.finest_step), lands at least \a count of the object's points on the
+ *  spacing (search.finest_step; coarser for a run more than 64 spacings wide each way,
+ *  which bounds the work), lands at least \a count of the object's points on the
  *  segment (landedTargetPoints ()). Within the run free space does not place the object,
  *  and points sampled along a side land on the target's samples only at some shifts. */
 bool
 landsAtLeast (const ShiftSearch& search, const FreeSpaceRun& run, int count)
 {
+  constexpr double kMostSamples = 64.0;  // each way
   const auto lands = [&] (double shift) {
     const std::vector<int> landed = landedTargetPoints (search.scene, search.object, search.motion (shift));
     return landedOnSegment (search.scene, landed, search.segment) >= count;
@@ -412,7 +414,8 @@ landsAtLeast (const ShiftSearch& search, const FreeSpaceRun& run, int count)
   if (lands (run.middle ()))
     return true;
   const double half = 0.5 * (run.to - run.from);
-  for (double offset = search.finest_step; search.finest_step > 0.0 && offset <= half; offset += search.finest_step)
+  const double step = std::max (search.finest_step, half / kMostSamples);
+  for (double offset = step; step > 0.0 && offset <= half; offset += step)
     if (lands (run.middle () - offset) || lands (run.middle () + offset))
       return true;
   return false;
