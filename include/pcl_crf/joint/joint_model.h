@@ -54,7 +54,9 @@ struct JointParameters
    *  with a target segment's explains it better (separateSegmentsTheTargetSeesThrough ()). */
   bool separate_segments_the_target_sees_through = true;
   /** the fewest points of a segment the target must see through under the static
-   *  motion before a shift of it is sought (one point alone may be range noise). */
+   *  motion before a shift of it is sought (one point alone may be range noise), at the
+   *  model's resolution: on scans thinned by k for the model (thinningFactor ()),
+   *  estimateJoint asks k times as many, the same bearings. */
   int segment_min_points_seen_through = 2;
   /** true (default): moving clusters that hold consecutive points of one source segment
    *  and whose motions place the smaller one's points alike become one
