@@ -64,6 +64,7 @@ thinAlong (const Eigen::Matrix2Xd& points, const std::vector<double>& bearings, 
   if (factor <= 1 || n == 0)
     return keepAll (points);
   ThinnedScan thinned;
+  thinned.factor = factor;
   // The beam of every point, counted from the first along the unwrapped bearings.
   double swept = 0.0;
   thinned.kept.push_back (0);

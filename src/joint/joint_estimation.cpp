@@ -3,7 +3,6 @@
 #include <pcl_crf/clustering/point_pairs.h>
 #include <pcl_crf/clustering/scan_clustering.h>
 #include <pcl_crf/core/knn_index.h>
-#include <pcl_crf/core/scan_thinning.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/lifted_matches.h>
 
@@ -377,12 +376,11 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     detail::removeClustersOnTheStaticOutline (views, result);
   if (parameters.separate_objects_in_free_space)
     detail::separateObjectsInFreeSpace (views, result);
-  if (parameters.separate_segments_the_target_sees_through) {
-    // The least evidence is counted at the model's resolution: a scan k times finer (thinned
-    // by k above) shows k times as many points over the same bearings.
-    const int finer = thinningFactor (medianBeamSpacing (source), model.matcher.parameters.training_beam_spacing);
-    detail::separateSegmentsTheTargetSeesThrough (views, parameters.segment_min_points_seen_through * finer, result);
-  }
+  // The slid segments' least evidence is counted at the model's resolution: a scan
+  // thinned by k above shows k times as many points over the same bearings.
+  if (parameters.separate_segments_the_target_sees_through)
+    detail::separateSegmentsTheTargetSeesThrough (
+        views, parameters.segment_min_points_seen_through * thinned.source.factor, result);
   if (parameters.separate_points_the_target_sees_through)
     detail::separatePointsTheTargetSeesThrough (views, result);
   if (parameters.merge_adjacent_clusters_that_move_alike)

@@ -31,6 +31,8 @@ struct ThinnedScan
   std::vector<int> kept;
   /** the kept points (points.col (k) is the full scan's point kept[k]) [m]. */
   Eigen::Matrix2Xd points;
+  /** every factor-th beam was kept (1: every point). */
+  int factor = 1;
 
   /** \brief true when points were dropped. */
   bool
