@@ -92,6 +92,26 @@ objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, 
   return counted;
 }
 
+/** Whether motion T leaves firm evidence that the object moved: a point of target
+ *  \a segment the source saw through, or of the object the target saw through, by
+ *  matching::seesThroughFirmly (). Beams a surface's edges dropped alone are none: a
+ *  parked car's edge returns, dropped at one end in one scan and at the other in the
+ *  next, look like a slide of one beam. */
+bool
+firmlySeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const std::vector<int>& object,
+                   const Rigid2d& T)
+{
+  const Rigid2d T_inverse = T.inverse ();
+  const detail::SensorView& source_view = scene.views.sourceView ();
+  for (int j = segment.begin; j < segment.end; ++j)
+    if (matching::seesThroughFirmly (source_view.profile, T_inverse * scene.target.col (j), source_view.breakpoint))
+      return true;
+  const detail::SensorView& target_view = scene.views.targetView ();
+  return std::any_of (object.begin (), object.end (), [&] (int i) {
+    return matching::seesThroughFirmly (target_view.profile, T * scene.source.col (i), target_view.breakpoint);
+  });
+}
+
 /** Per point of \a points: its nearest target point when T puts it within that
  *  point's overlap radius, or -1. */
 std::vector<int>
@@ -525,9 +545,9 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
     if (static_cast<int> (object.size ()) < parameters.min_segment_points)
       continue;
     const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
-    if (seen_through < 2)  // freeSpaceRun () must resolve two
-      continue;
     const matching::ScanSegment& segment = target_segments[g];
+    if (seen_through < 2 || !firmlySeenThrough (scene, segment, object, T_static))  // freeSpaceRun () must resolve two
+      continue;
     const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
     const double coarse_step = 2.0 * parameters.overlap_radius;
     const ShiftSearch search{scene,

@@ -253,6 +253,30 @@ compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& poin
   return farther ? ReturnsNear::Farther : nearer ? ReturnsNear::Nearer : ReturnsNear::None;
 }
 
+/** Whether the nearest return on either side of the bearing of \a point, within two
+ *  steps, lies within the breakpoint distance of it (as compareWithReturnsNear () tells
+ *  Mixed): the point continues that return's surface across one beam. */
+bool
+continuesAReturnAcrossOneBeam (const RangeProfile& profile, const Eigen::Vector2d& point,
+                               const BreakpointDistance& distance)
+{
+  const Eigen::Index m = profile.bearings.size ();
+  const double theta = bearingFrom (profile, point);
+  const double range = point.norm ();
+  const double margin = range * distance.slope + distance.offset;
+  const Eigen::Index after = firstReturnNotBefore (profile, theta);
+  for (const Eigen::Index k : {after - 1, after}) {
+    const Eigen::Index j = (k % m + m) % m;  // wrapping (near only on a full circle)
+    const double apart = std::min (counterClockwise (profile.bearings (j), theta),
+                                   counterClockwise (theta, profile.bearings (j)));
+    const bool farther = profile.ranges (j) > range + margin;
+    const bool nearer = profile.ranges (j) * (1.0 + distance.slope) + distance.offset < range;
+    if (apart <= 2.0 * profile.step && !farther && !nearer)
+      return true;
+  }
+  return false;
+}
+
 /** seesThrough () and seesThroughToAReturn (): \a empty_beams_free says whether a
  *  direction without a return within one step counts as seen through. */
 bool
@@ -284,6 +308,18 @@ bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
 {
   return seesThroughPoint (profile, point, distance, true);
+}
+
+bool
+seesThroughFirmly (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
+  switch (compareWithReturnsNear (profile, point, distance)) {
+    case ReturnsNear::Farther: return true;
+    case ReturnsNear::None:
+      return seesThroughPoint (profile, point, distance, true) &&
+             !continuesAReturnAcrossOneBeam (profile, point, distance);
+    default: return false;
+  }
 }
 
 bool

@@ -154,22 +154,30 @@ TEST (JointFreeSpaceObjects, AOneTenthScaleCarSlidingAFewCentimetresGetsItsOwnCl
 
 TEST (JointFreeSpaceObjects, ACarSlidingBetweenTwoFineGridShiftsIsFoundByBisection)
 {
-  // The car of the previous test sliding 2 and 3 cm: a third and a half of its 6 cm
-  // fine step. Between the grid shifts 0 and 6 cm that see 2 and 5 (3 and 3) points
-  // through, the fewest show only at the slide; bisecting towards it (down to the
-  // side's 4 mm point spacing) finds them. Measured: 0.018 and 0.027 m.
-  for (const double slide : {0.02, 0.03}) {
-    SCOPED_TRACE (slide);
-    std::vector<bool> source_car, target_car;
-    const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
-    const Eigen::Matrix2Xd target = street (-2.0 + 10.0 * slide, target_car, 0.1, 4.4, kDegree);
-    JointResult result;
-    const int car_cluster = separatedCluster (source, target, source_car, result);
-    ASSERT_GE (car_cluster, 0);
-    const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
-    EXPECT_NEAR (T.translation ().x (), slide, 0.005);
-    EXPECT_NEAR (T.translation ().y (), 0.0, 1e-9);
-  }
+  // The car of the previous test sliding 3 cm: half its 6 cm fine step. The grid shifts
+  // 0 and 6 cm both see 3 points through, the fewest show only at the slide; bisecting
+  // towards it (down to the side's 4 mm point spacing) finds it. Measured: 0.027 m.
+  std::vector<bool> source_car, target_car;
+  const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
+  const Eigen::Matrix2Xd target = street (-1.7, target_car, 0.1, 4.4, kDegree);
+  JointResult result;
+  const int car_cluster = separatedCluster (source, target, source_car, result);
+  ASSERT_GE (car_cluster, 0);
+  const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
+  EXPECT_NEAR (T.translation ().x (), 0.03, 0.005);
+  EXPECT_NEAR (T.translation ().y (), 0.0, 1e-9);
+}
+
+TEST (JointFreeSpaceObjects, ASlideOfOneBeamAtEitherEndIsNotObservedAgainstEmptyBeams)
+{
+  // Slid 2 cm, the car's ends each lie less than two beams past the other scan's last
+  // return, where no return came back: what a parked car's dropped edge returns show
+  // (next test). Free space does not tell the two apart, so neither slides.
+  std::vector<bool> source_car, target_car;
+  const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
+  const Eigen::Matrix2Xd target = street (-1.8, target_car, 0.1, 4.4, kDegree);
+  JointResult result = allStatic (source, target);
+  EXPECT_EQ (separateObjectsInFreeSpace (source, target, {}, result), 0);
 }
 
 TEST (JointFreeSpaceObjects, AStandingTruckAndTheStaticWorldStayTogether)
@@ -178,6 +186,47 @@ TEST (JointFreeSpaceObjects, AStandingTruckAndTheStaticWorldStayTogether)
   const Eigen::Matrix2Xd scan = street (-4.0, truck);
   JointResult result = allStatic (scan, scan);
   EXPECT_EQ (separateObjectsInFreeSpace (scan, scan, {}, result), 0);
+  EXPECT_EQ (result.cluster_motions.size (), 1u);
+}
+
+/** \a scan without its points at \a drop (indices, increasing); \a marked likewise. */
+Eigen::Matrix2Xd
+withoutPoints (const Eigen::Matrix2Xd& scan, const std::vector<int>& drop, std::vector<bool>& marked)
+{
+  std::vector<Eigen::Index> kept;
+  std::vector<bool> kept_marked;
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+    if (!std::binary_search (drop.begin (), drop.end (), static_cast<int> (i))) {
+      kept.push_back (i);
+      kept_marked.push_back (marked[i]);
+    }
+  marked = kept_marked;
+  Eigen::Matrix2Xd out (2, static_cast<Eigen::Index> (kept.size ()));
+  for (std::size_t k = 0; k < kept.size (); ++k)
+    out.col (static_cast<Eigen::Index> (k)) = scan.col (kept[k]);
+  return out;
+}
+
+TEST (JointFreeSpaceObjects, AParkedCarsDroppedEdgeReturnsDoNotMakeItSlide)
+{
+  // The parked 1/10-scale car of the overtakes recording: 0.2 m to the left, ahead of
+  // the sensor (x from 5 to 49 cm), it creeps 6 mm, less than the recordings' 1 cm
+  // range noise. The source's laser dropped the return of the car's front end (its
+  // first point in beam order, at 23°), the target's that of its rear end (its last).
+  // The target's front (22° and 23°) then lies within two beams of the source's first
+  // return (24°), where no return came back: seen through, but only where an edge may
+  // have dropped a return (matching::seesThroughFirmly () is false for both), so no slide
+  // is sought. Without that rule the car was given one.
+  std::vector<bool> source_car, target_car;
+  const Eigen::Matrix2Xd source_full = street (0.5, source_car, 0.1, 4.4, kDegree);
+  const Eigen::Matrix2Xd target_full = street (0.56, target_car, 0.1, 4.4, kDegree);
+  const auto first = static_cast<int> (std::find (source_car.begin (), source_car.end (), true) - source_car.begin ());
+  const auto last =
+      static_cast<int> (target_car.rend () - std::find (target_car.rbegin (), target_car.rend (), true)) - 1;
+  const Eigen::Matrix2Xd source = withoutPoints (source_full, {first}, source_car);
+  const Eigen::Matrix2Xd target = withoutPoints (target_full, {last}, target_car);
+  JointResult result = allStatic (source, target);
+  EXPECT_EQ (separateObjectsInFreeSpace (source, target, {}, result), 0);
   EXPECT_EQ (result.cluster_motions.size (), 1u);
 }
 

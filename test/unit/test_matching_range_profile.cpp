@@ -13,6 +13,7 @@ using pcl_crf::matching::hiddenBehindAReturn;
 using pcl_crf::matching::inFieldOfView;
 using pcl_crf::matching::makeRangeProfile;
 using pcl_crf::matching::seesThrough;
+using pcl_crf::matching::seesThroughFirmly;
 using pcl_crf::matching::seesThroughToAReturn;
 
 constexpr double kDegree = M_PI / 180.0;
@@ -110,6 +111,26 @@ TEST (RangeProfile, OnTheEvidenceOfReturnsOnlyADirectionWithoutReturnsSaysNothin
   EXPECT_FALSE (seesThroughToAReturn (profile, polar (15.0, 1.0), distance));
   // Outside the field of view neither does.
   EXPECT_FALSE (seesThroughToAReturn (profile, polar (60.0, 1.0), distance));
+}
+
+TEST (RangeProfile, OneBeamPastASurfacesLastReturnIsNoFirmEvidence)
+{
+  const auto profile = makeRangeProfile (wallWithOpening ());
+  const auto distance = pcl_crf::matching::breakpointDistance (profile, kLambda, kNoise);
+  // 10.5°: no return within a step; the one at 9° (5.066 m) is 1.5 steps away. On the
+  // wall's line (5.084 m) the point continues it across the beam at 10°, which a real
+  // laser may have dropped at the wall's edge: free for seesThrough (), not firmly.
+  const Eigen::Vector2d continuing = polar (10.5, 5.0 / std::cos (10.5 * kDegree));
+  EXPECT_TRUE (seesThrough (profile, continuing, distance));
+  EXPECT_FALSE (seesThroughFirmly (profile, continuing, distance));
+  // Nearer than the wall by more than the breakpoint distance it continues nothing.
+  EXPECT_TRUE (seesThroughFirmly (profile, polar (10.5, 3.0), distance));
+  // 15°: the nearest returns (9°, 21°) are 6 steps away.
+  EXPECT_TRUE (seesThroughFirmly (profile, polar (15.0, 5.0), distance));
+  // Where returns lie within a step, as seesThrough ().
+  EXPECT_TRUE (seesThroughFirmly (profile, polar (0.5, 3.0), distance));
+  EXPECT_FALSE (seesThroughFirmly (profile, polar (0.5, 4.8), distance));
+  EXPECT_FALSE (seesThroughFirmly (profile, polar (60.0, 1.0), distance));
 }
 
 TEST (RangeProfile, APointBehindEveryReturnAroundItIsHidden)

@@ -95,6 +95,16 @@ inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point);
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
 
+/** \brief seesThrough () without the beams a surface's edge may have dropped: false as
+ *  well where no return lies within one step of the point's bearing but the nearest
+ *  return on either side, within two steps, lies within the breakpoint distance of it.
+ *  Such a direction lies one beam past the last return of a surface the point continues,
+ *  and a real laser drops the return of a beam that grazes an edge (mixed pixels), so
+ *  it says nothing of free space there (a parked car's edge returns, dropped at one end
+ *  in one scan and at the other in the next, look like a slide of one beam). */
+bool
+seesThroughFirmly (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
+
 /** \brief seesThrough () on the evidence of returns only: true when the point lies inside
  *  the field of view, some return lies within one step of its bearing and every such
  *  return lies farther than it by more than the breakpoint distance. A direction without
