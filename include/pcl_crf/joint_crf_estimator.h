@@ -117,6 +117,12 @@ public:
   const pcl::Indices&
   getOutliers () const { return outliers_; }
 
+  /** \brief Outliers that moved away (joint::JointResult::moved_away): the target saw
+   *  through where the static motion puts them, so they are not the static world; their
+   *  motion is unknown. */
+  const pcl::Indices&
+  getMovedAway () const { return moved_away_; }
+
   /** \brief Everything the last align() found, in the core's frame-explicit form
    *  (indices into the finite indexed points of the source cloud, in index order). */
   const joint::JointResult&
@@ -155,6 +161,7 @@ private:
   std::vector<pcl::PointIndices> clusters_;
   std::vector<Matrix4, Eigen::aligned_allocator<Matrix4>> cluster_transformations_;
   pcl::Indices outliers_;
+  pcl::Indices moved_away_;
 };
 
 }  // namespace pcl_crf

@@ -387,6 +387,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     detail::mergeAdjacentClustersThatMoveAlike (views, result);
   if (parameters.separate_distant_parts)
     separateDistantParts (source, parameters.part_gap, result);
+  if (parameters.mark_points_that_moved_away)
+    detail::markPointsThatMovedAway (views, result);
   return result;
 }
 

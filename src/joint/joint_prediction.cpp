@@ -16,9 +16,12 @@ toPrediction (const Eigen::Matrix2Xd& source, const joint::JointResult& result)
 {
   Prediction prediction;
   prediction.source_match = result.source_match;
-  std::vector<int> clustered, labels;
+  std::vector<bool> moved_away (result.source_cluster.size (), false);
+  for (int i : result.moved_away)
+    moved_away.at (static_cast<std::size_t> (i)) = true;
+  std::vector<int> clustered, labels;  // labelled points: the clustered ones and those that moved away
   for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
-    if (result.source_cluster[i] != kOutlierCluster) {
+    if (result.source_cluster[i] != kOutlierCluster || moved_away[i]) {
       clustered.push_back (static_cast<int> (i));
       labels.push_back (result.source_cluster[i]);
     }

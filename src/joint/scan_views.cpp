@@ -1,5 +1,8 @@
 #include "scan_views.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace pcl_crf {
 namespace joint {
 namespace detail {
@@ -60,6 +63,21 @@ ScanViews::view (std::optional<SensorView>& cache, const Eigen::Matrix2Xd& scan)
     cache = std::move (seen);
   }
   return *cache;
+}
+
+std::vector<bool>
+grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
+{
+  const Eigen::Index n = points.cols ();
+  const double least_sine = std::sin (breakpoint_angle);
+  std::vector<bool> grazed (static_cast<std::size_t> (n), false);
+  for (Eigen::Index k = 0; k < n && n > 1; ++k) {
+    const Eigen::Vector2d along = points.col (std::min (k + 1, n - 1)) - points.col (std::max<Eigen::Index> (k - 1, 0));
+    const Eigen::Vector2d& beam = points.col (k);
+    const double scale = along.norm () * beam.norm ();
+    grazed[k] = scale > 0.0 && std::abs (along.x () * beam.y () - along.y () * beam.x ()) < least_sine * scale;
+  }
+  return grazed;
 }
 
 }  // namespace detail

@@ -89,6 +89,14 @@ private:
   mutable std::optional<KnnIndex> target_points_;
 };
 
+/** Per point of a segment placed in the target frame (\a points, in the segment's
+ *  order): whether the target's beam to it grazes the segment, meeting its local
+ *  direction (through its neighbours on the segment) at less than the breakpoint angle.
+ *  There a range difference of a few centimetres moves the surface by whole beams, so
+ *  neither a return beyond the point nor one on it tells whether the segment is there. */
+std::vector<bool>
+grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle);
+
 /** The free-space steps of joint_estimation.h on shared views (estimateJoint runs them
  *  in turn on one pair); the public functions build their own. */
 int
@@ -108,6 +116,9 @@ separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 
 int
 mergeAdjacentClustersThatMoveAlike (const ScanViews& views, JointResult& result);
+
+int
+markPointsThatMovedAway (const ScanViews& views, JointResult& result);
 
 }  // namespace detail
 }  // namespace joint

@@ -62,26 +62,6 @@ private:
   const detail::ScanViews& views_;
 };
 
-/** Per point of a segment placed in the target frame (\a points, in the segment's
- *  order): whether the target's beam to it grazes the segment, meeting its local
- *  direction (through its neighbours on the segment) at less than the breakpoint angle.
- *  There a range difference of a few centimetres moves the surface by whole beams, so
- *  neither a return beyond the point nor one on it tells whether the segment is there. */
-std::vector<bool>
-grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
-{
-  const Eigen::Index n = points.cols ();
-  const double least_sine = std::sin (breakpoint_angle);
-  std::vector<bool> grazed (static_cast<std::size_t> (n), false);
-  for (Eigen::Index k = 0; k < n && n > 1; ++k) {
-    const Eigen::Vector2d along = points.col (std::min (k + 1, n - 1)) - points.col (std::max<Eigen::Index> (k - 1, 0));
-    const Eigen::Vector2d& beam = points.col (k);
-    const double scale = along.norm () * beam.norm ();
-    grazed[k] = scale > 0.0 && std::abs (along.x () * beam.y () - along.y () * beam.x ()) < least_sine * scale;
-  }
-  return grazed;
-}
-
 /** What the target says of each point of a segment placed by one motion. */
 struct Placement
 {
@@ -96,7 +76,7 @@ place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const 
 {
   Placement p{std::move (points), {}, {}, {}, {}};
   p.nearest = view.nearest (p.points);
-  const std::vector<bool> grazed = grazedPoints (p.points, breakpoint_angle);
+  const std::vector<bool> grazed = detail::grazedPoints (p.points, breakpoint_angle);
   for (Eigen::Index k = 0; k < p.points.cols (); ++k) {
     p.in_view.push_back (!grazed[k] && view.inView (p.points.col (k)));
     p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
@@ -245,7 +225,7 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
     if (segment.size () < parameters.min_segment_points || !outsideMovingClusters (segment, result))
       continue;
     const Eigen::Matrix2Xd at_static = T_static * source.middleCols (segment.begin, segment.size ());
-    const std::vector<bool> grazed = grazedPoints (at_static, parameters.breakpoint_angle);
+    const std::vector<bool> grazed = detail::grazedPoints (at_static, parameters.breakpoint_angle);
     int seen_through = 0;
     for (Eigen::Index k = 0; k < at_static.cols (); ++k)
       seen_through += !grazed[k] && view.seesThrough (at_static.col (k)) ? 1 : 0;

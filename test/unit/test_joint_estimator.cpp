@@ -347,6 +347,39 @@ TEST (JointEstimation, ACarSplitByTwoStepsBecomesOneWhereItsPartsMeetAndMoveAlik
   EXPECT_GT (scorePair (pair, joint::toPrediction (pair.source, r)).v_measure, 0.92);
 }
 
+TEST (JointEstimation, ACarThatLeftTheTargetsViewIsNotTheStaticWorld)
+{
+  // Simulator seed 3003, pair 23: a car of 68 points that the target no longer sees.
+  // Without a counterpart its points are outliers, which the prediction used to give the
+  // static world's label (V 0.170). The target saw through to returns beyond 40 of them
+  // under the static motion: they moved away, and the prediction keeps the car out of
+  // the static world (V 0.883).
+  simulation::SimulatorConfig config;
+  config.seed = 3003;
+  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (23);
+  const int car = 2;
+  ASSERT_EQ (std::count (pair.source_object.begin (), pair.source_object.end (), car), 68);
+  ASSERT_EQ (std::count (pair.target_object.begin (), pair.target_object.end (), car), 0);
+  const auto carOutliers = [&] (const pcl_crf::Prediction& prediction) {
+    int outliers = 0;
+    for (std::size_t i = 0; i < pair.source_object.size (); ++i)
+      outliers += pair.source_object[i] == car && prediction.source_cluster[i] == kOutlierCluster ? 1 : 0;
+    return outliers;
+  };
+  joint::JointParameters unmarked;
+  unmarked.mark_points_that_moved_away = false;
+  const joint::JointResult before = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), unmarked);
+  EXPECT_TRUE (before.moved_away.empty ());
+  EXPECT_EQ (carOutliers (joint::toPrediction (pair.source, before)), 0);
+  const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel ());
+  ASSERT_EQ (r.moved_away.size (), 40u);
+  for (int i : r.moved_away)
+    EXPECT_EQ (pair.source_object[i], car) << i;
+  const pcl_crf::Prediction prediction = joint::toPrediction (pair.source, r);
+  EXPECT_EQ (carOutliers (prediction), 68);
+  EXPECT_GT (scorePair (pair, prediction).v_measure, 0.85);
+}
+
 TEST (JointEstimation, ASlidSegmentNeedsAsManyBearingsSeenThroughOnAFinerScan)
 {
   // Simulator seed 3003, pair 8, at 1081 beams over 270° (0.25°, thinned by 2 for the
@@ -762,6 +795,40 @@ TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
   for (std::size_t l = 0; l < clusters.size (); ++l)
     EXPECT_EQ (clusters[l].indices.size (), static_cast<std::size_t> (direct.cluster_sizes[l]));
   EXPECT_EQ (estimator.getOutliers ().size (), direct.outliers.size ());
+}
+
+TEST (JointCRFEstimator, ReportsThePointsThatMovedAwayWithCloudIndices)
+{
+  // Simulator seed 3003, pair 23 (see JointEstimation.ACarThatLeftTheTargetsViewIsNot…),
+  // with a NaN point at 7: the 40 points of the car that left, at their cloud indices.
+  simulation::SimulatorConfig config;
+  config.seed = 3003;
+  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (23);
+  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
+  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
+  auto source_cloud = toCloud (source);
+  source_cloud->insert (source_cloud->begin () + 7,
+                        pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  ASSERT_TRUE (estimator.loadModel (kModelPath));
+  estimator.setInputSource (source_cloud);
+  estimator.setInputTarget (toCloud (target));
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+  Odometry as_given = pair.odometry;
+  as_given.T_source_target = toRigid2d (odometry);
+  const joint::JointResult direct = joint::estimateJoint (source, target, as_given, shippedModel ());
+  ASSERT_EQ (direct.moved_away.size (), 40u);
+  pcl::Indices expected;
+  for (const int i : direct.moved_away)
+    expected.push_back (i < 7 ? i : i + 1);
+  EXPECT_EQ (estimator.getMovedAway (), expected);
+  for (const auto index : estimator.getMovedAway ())
+    EXPECT_NE (std::find (estimator.getOutliers ().begin (), estimator.getOutliers ().end (), index),
+               estimator.getOutliers ().end ());
 }
 
 TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)

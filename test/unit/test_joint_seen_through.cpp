@@ -17,6 +17,7 @@ using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
 using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
+using pcl_crf::joint::markPointsThatMovedAway;
 using pcl_crf::joint::removeClustersTheTargetSeesThrough;
 using pcl_crf::joint::separatePointsTheTargetSeesThrough;
 using pcl_crf::joint::separateSegmentsTheTargetSeesThrough;
@@ -605,6 +606,111 @@ TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEviden
   JointResult no_static = scene.allStatic ();
   no_static.static_cluster = -1;
   EXPECT_EQ (separateSegmentsTheTargetSeesThrough (scene.source, scene.target, parameters, 2, no_static), 0);
+}
+
+/** allStaticResult () with the points of \a object (per point: \a objects) outliers. */
+JointResult
+withObjectUnmatched (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<int>& objects,
+                     int object)
+{
+  JointResult result = allStaticResult (source, target);
+  for (std::size_t i = 0; i < objects.size (); ++i)
+    if (objects[i] == object) {
+      result.source_cluster[i] = kOutlierCluster;
+      result.source_match[i] = kNoMatch;
+    }
+  return result;
+}
+
+/** The indices of the points of \a object (per point: \a objects), increasing. */
+std::vector<int>
+pointsOf (const std::vector<int>& objects, int object)
+{
+  std::vector<int> points;
+  for (std::size_t i = 0; i < objects.size (); ++i)
+    if (objects[i] == object)
+      points.push_back (static_cast<int> (i));
+  return points;
+}
+
+TEST (JointMovedAway, OutliersTheTargetSawThroughToAReturnMovedAway)
+{
+  // The scene's board (y = 3 m, 31 points) is gone from the target, whose beams there
+  // reach the wall 5 m behind it: every board point moved away, and the prediction
+  // keeps them out of the static world.
+  const Scene scene;
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
+  const std::vector<int> board = pointsOf (scene.source_object, kBoard);
+  ASSERT_EQ (board.size (), 31u);
+  EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, result), 31);
+  EXPECT_EQ (result.moved_away, board);
+  EXPECT_EQ (result.cluster_motions.size (), 1u);  // clusters and matches untouched
+  const pcl_crf::Prediction prediction = pcl_crf::joint::toPrediction (scene.source, result);
+  for (Eigen::Index i = 0; i < scene.source.cols (); ++i)
+    EXPECT_EQ (prediction.source_cluster[i], scene.source_object[i] == kBoard ? kOutlierCluster : 0) << i;
+  // Unmarked, the board's outliers took the static world's label, as before.
+  result.moved_away.clear ();
+  const pcl_crf::Prediction completed = pcl_crf::joint::toPrediction (scene.source, result);
+  EXPECT_EQ (std::count (completed.source_cluster.begin (), completed.source_cluster.end (), 0), scene.source.cols ());
+}
+
+TEST (JointMovedAway, NothingBehindAShortRunOrAClusteredPointMovedAway)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  // No wall behind the board in either scan: its beams in the target saw nothing, which
+  // a dropped return would show as well.
+  std::vector<int> source_object, target_object;
+  const Eigen::Matrix2Xd open_source =
+      rayCast ({{8.0, 2.0, 20.0, kWall}, {3.0, -2.0, -1.0, kBoard}}, source_object);
+  const Eigen::Matrix2Xd open_target = rayCast ({{8.0, 2.0, 20.0, kWall}}, target_object);
+  JointResult open = withObjectUnmatched (open_source, open_target, source_object, kBoard);
+  EXPECT_EQ (markPointsThatMovedAway (open_source, open_target, parameters, open), 0);
+  EXPECT_TRUE (open.moved_away.empty ());
+  // Two consecutive board outliers are fewer than min_segment_points (3).
+  const Scene scene;
+  JointResult two = allStaticResult (scene.source, scene.target);
+  const std::vector<int> board = pointsOf (scene.source_object, kBoard);
+  for (const int i : {board[5], board[6]})
+    two.source_cluster[i] = kOutlierCluster;
+  EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, two), 0);
+  // Points the static world or a moving cluster holds are not outliers.
+  JointResult clustered = allStaticResult (scene.source, scene.target);
+  EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, clustered), 0);
+  // Without a static world nothing tells where the points should be.
+  JointResult no_static = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
+  no_static.static_cluster = -1;
+  EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, no_static), 0);
+}
+
+TEST (JointMovedAway, ABoardSeenNearlyEdgeOnDidNotMoveAway)
+{
+  // A board along y = 0.5 m, x in [2.6, 3.4] m, seen at 8.5°–10.5° (5 points 0.14–0.2 m
+  // apart, one segment), gone from the target, whose beams there reach a wall along
+  // y = 1.5 m behind it. Four of them meet the board at 10° or less, the breakpoint
+  // angle: a few centimetres of range move such a surface by whole beams, so the wall
+  // beyond says nothing of it, and one point is no run.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  std::vector<int> source_object, target_object;
+  const Eigen::Matrix2Xd source = rayCast ({{1.5, 5.0, 20.0, kWall}, {0.5, 2.6, 3.4, kBoard}}, source_object);
+  const Eigen::Matrix2Xd target = rayCast ({{1.5, 5.0, 20.0, kWall}}, target_object);
+  ASSERT_EQ (pointsOf (source_object, kBoard).size (), 5u);
+  JointResult result = withObjectUnmatched (source, target, source_object, kBoard);
+  EXPECT_EQ (markPointsThatMovedAway (source, target, parameters, result), 0);
+}
+
+TEST (JointMovedAway, RejectsResultsThatDoNotFitTheScans)
+{
+  const Scene scene;
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult short_result = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
+  short_result.source_cluster.pop_back ();
+  short_result.source_match.pop_back ();
+  EXPECT_THROW (markPointsThatMovedAway (scene.source, scene.target, parameters, short_result),
+                std::invalid_argument);
+  JointResult bad_cluster = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
+  bad_cluster.source_cluster[0] = 4;
+  EXPECT_THROW (markPointsThatMovedAway (scene.source, scene.target, parameters, bad_cluster), std::invalid_argument);
 }
 
 }  // namespace

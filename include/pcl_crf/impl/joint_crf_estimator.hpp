@@ -47,6 +47,7 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::clearResults ()
   clusters_.clear ();
   cluster_transformations_.clear ();
   outliers_.clear ();
+  moved_away_.clear ();
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
@@ -71,6 +72,8 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::
   }
   for (const Rigid2d& T : result_.cluster_motions)
     cluster_transformations_.push_back (toMatrix4<Scalar> (T));
+  for (const int i : result_.moved_away)
+    moved_away_.push_back (source_index[i]);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void

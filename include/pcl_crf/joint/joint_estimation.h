@@ -43,6 +43,9 @@ struct JointResult
   Rigid2d T_source_target = Rigid2d::Identity ();
   /** source points in the outlier cluster, increasing. */
   std::vector<int> outliers;
+  /** the outliers that moved away to where the target did not see them
+   *  (markPointsThatMovedAway ()), increasing: not the static world, their motion unknown. */
+  std::vector<int> moved_away;
   /** clusters proposed by the initial CRF-Clustering. */
   int initial_clusters = 0;
   /** inference rounds (each followed by the removal of vacuous clusters). */
@@ -138,7 +141,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  (separatePointsTheTargetSeesThrough ()); then moving clusters that meet on one
  *  surface and move alike become one (mergeAdjacentClustersThatMoveAlike ()); last, a
  *  moving cluster whose points lie in parts far apart becomes one cluster per part
- *  (separateDistantParts ()).
+ *  (separateDistantParts ()), and the outliers the target saw through where the static
+ *  motion puts them are marked as moved away (markPointsThatMovedAway ()).
  *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
@@ -353,11 +357,34 @@ int
 separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                             const matching::SegmentMotionParameters& parameters, JointResult& result);
 
+/** \brief Marks the outliers that moved away (JointResult::moved_away): every run of at
+ *  least min_segment_points consecutive outlier points of one source segment
+ *  (matching::segmentScan ()) that the static motion puts where the target saw through
+ *  to a return beyond them (matching::seesThroughToAReturn (); a direction without a
+ *  return may be one the laser dropped), no point's target beam grazing the segment
+ *  (meeting its direction at less than the breakpoint angle, where a few centimetres
+ *  move the surface by whole beams). The static world does not explain them: an object
+ *  that left the target's view, or went where the target did not see it, so its motion
+ *  is unknown. Points stay in the outlier cluster; toPrediction () keeps them (and the
+ *  outliers nearest them) there rather than giving them the static world's label.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters segmentation and breakpoint distance (the matcher's segment
+ *             parameters)
+ *  \param[in,out] result a joint result for these scans; its moved_away is replaced
+ *  \return the number of points marked (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with the scans or a
+ *          match or cluster is out of range. */
+int
+markPointsThatMovedAway (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                         const matching::SegmentMotionParameters& parameters, JointResult& result);
+
 /** \brief A joint result as a Prediction for the metrics: the associations, the
  *  clusters with the outlier cluster's points given the cluster of their nearest
- *  clustered neighbour in the same distance segment (as CRF-M labels points without
- *  an association, so that both are scored alike), the motions, the static cluster
- *  and the sensor's motion. */
+ *  labelled neighbour in the same distance segment (as CRF-M labels points without
+ *  an association, so that both are scored alike; the points that moved away are
+ *  labelled kOutlierCluster, so an outlier nearest them stays one too), the motions,
+ *  the static cluster and the sensor's motion. */
 Prediction
 toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
 

@@ -65,6 +65,9 @@ struct JointParameters
   /** true (default): a moving cluster whose points lie in parts more than part_gap
    *  apart becomes one cluster per part, each with its motion (separateDistantParts ()). */
   bool separate_distant_parts = true;
+  /** true (default): outliers the target saw through where the static motion puts them
+   *  are marked as moved away (markPointsThatMovedAway ()). */
+  bool mark_points_that_moved_away = true;
   /** the largest distance between neighbouring points of one object [m], > 0; default 2:
    *  wider than the gaps a thin occluder or grazing incidence leaves in a vehicle's
    *  outline at these resolutions (about 1 m at 15 m, 1° per beam, 10° incidence),
