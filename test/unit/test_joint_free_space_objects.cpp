@@ -104,6 +104,18 @@ separatedCluster (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target
   return cluster == result.static_cluster ? -1 : cluster;
 }
 
+/** separatedCluster () for the 1/10-scale car of the overtaking rigs: a 0.44 m side
+ *  0.2 m to the left, 1° beams, its rear at −0.2 m in the source and at \a target_rear
+ *  [m] in the target. */
+int
+slidCarCluster (double target_rear, JointResult& result)
+{
+  std::vector<bool> source_car, target_car;
+  const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
+  const Eigen::Matrix2Xd target = street (10.0 * target_rear, target_car, 0.1, 4.4, kDegree);
+  return separatedCluster (source, target, source_car, result);
+}
+
 TEST (JointFreeSpaceObjects, ATruckSlidingAlongItselfGetsItsOwnCluster)
 {
   // The truck drives 1.5 m forward (rear −4 m → −2.5 m) while the sensor stands. Its
@@ -139,11 +151,8 @@ TEST (JointFreeSpaceObjects, AOneTenthScaleCarSlidingAFewCentimetresGetsItsOwnCl
   // 1° beams, slides 8 cm forward (rear −0.2 m → −0.12 m), less than a third of the
   // 0.3 m coarse grid (2 overlap_radius) but more than one of the segment's 6 cm fine
   // steps (2 overlap radii; each 3 range_noise, more than 2 of its point spacings).
-  std::vector<bool> source_car, target_car;
-  const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
-  const Eigen::Matrix2Xd target = street (-1.2, target_car, 0.1, 4.4, kDegree);
   JointResult result;
-  const int car_cluster = separatedCluster (source, target, source_car, result);
+  const int car_cluster = slidCarCluster (-0.12, result);
   ASSERT_GE (car_cluster, 0);
   // Measured: 0.069 m (the spacing along the side at the car's front end is 1.3 cm).
   const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
@@ -157,11 +166,8 @@ TEST (JointFreeSpaceObjects, ACarSlidingBetweenTwoFineGridShiftsIsFoundByBisecti
   // The car of the previous test sliding 3 cm: half its 6 cm fine step. The grid shifts
   // 0 and 6 cm both see 3 points through, the fewest show only at the slide; bisecting
   // towards it (down to the side's 4 mm point spacing) finds it. Measured: 0.027 m.
-  std::vector<bool> source_car, target_car;
-  const Eigen::Matrix2Xd source = street (-2.0, source_car, 0.1, 4.4, kDegree);
-  const Eigen::Matrix2Xd target = street (-1.7, target_car, 0.1, 4.4, kDegree);
   JointResult result;
-  const int car_cluster = separatedCluster (source, target, source_car, result);
+  const int car_cluster = slidCarCluster (-0.17, result);
   ASSERT_GE (car_cluster, 0);
   const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
   EXPECT_NEAR (T.translation ().x (), 0.03, 0.005);
