@@ -92,24 +92,24 @@ objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, 
   return counted;
 }
 
-/** Whether motion T leaves firm evidence that the object moved: a point of target
- *  \a segment the source saw through, or of the object the target saw through, by
- *  matching::seesThroughFirmly (). Beams a surface's edges dropped alone are none: a
- *  parked car's edge returns, dropped at one end in one scan and at the other in the
- *  next, look like a slide of one beam. */
-bool
+/** The firm evidence under motion T that the object moved: how many points of target
+ *  \a segment the source saw through, and of the object the target saw through, by
+ *  matching::seesThroughFirmly (). Beams a surface's edges dropped are none: a parked
+ *  car's edge returns, dropped at one end in one scan and at the other in the next, look
+ *  like a slide of one beam. */
+int
 firmlySeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const std::vector<int>& object,
                    const Rigid2d& T)
 {
   const Rigid2d T_inverse = T.inverse ();
   const detail::SensorView& source_view = scene.views.sourceView ();
+  int firm = 0;
   for (int j = segment.begin; j < segment.end; ++j)
-    if (matching::seesThroughFirmly (source_view.profile, T_inverse * scene.target.col (j), source_view.breakpoint))
-      return true;
+    firm += matching::seesThroughFirmly (source_view.profile, T_inverse * scene.target.col (j), source_view.breakpoint);
   const detail::SensorView& target_view = scene.views.targetView ();
-  return std::any_of (object.begin (), object.end (), [&] (int i) {
-    return matching::seesThroughFirmly (target_view.profile, T * scene.source.col (i), target_view.breakpoint);
-  });
+  for (int i : object)
+    firm += matching::seesThroughFirmly (target_view.profile, T * scene.source.col (i), target_view.breakpoint);
+  return firm;
 }
 
 /** Per point of \a points: its nearest target point when T puts it within that
@@ -546,7 +546,8 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
       continue;
     const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
     const matching::ScanSegment& segment = target_segments[g];
-    if (seen_through < 2 || !firmlySeenThrough (scene, segment, object, T_static))  // freeSpaceRun () must resolve two
+    const int firm = firmlySeenThrough (scene, segment, object, T_static);
+    if (seen_through < 2 || firm == 0)  // freeSpaceRun () must resolve two, and the slide a firm one
       continue;
     const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
     const double coarse_step = 2.0 * parameters.overlap_radius;
@@ -567,6 +568,8 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
         !landsAtLeast (search, run, explainedByStatic (scene, object, g, static_target)))
       continue;
     const Rigid2d T_moved = search.motion (run.middle ());
+    if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
+      continue;
     const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
     addCluster (scene, object, g, T_moved, landed, result);
     ++added;

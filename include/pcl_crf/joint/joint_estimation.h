@@ -324,7 +324,8 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
  *  the static motion puts on that target segment (nearest target point on it, within its
  *  overlap radius). Unless some of those points is seen through firmly
  *  (matching::seesThroughFirmly (): not only beams a surface's edges dropped), nothing
- *  is searched. Its motion slides the static motion along the principal axis of
+ *  is searched, and the slide found must leave fewer points seen through firmly.
+ *  Its motion slides the static motion along the principal axis of
  *  the target points the static motion puts the object on (not of the points of
  *  another surface the segment runs on into): on a grid of 2 overlap_radius steps
  *  within ±max_displacement (or less, where the object and the segment no longer
