@@ -546,8 +546,10 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
       continue;
     const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
     const matching::ScanSegment& segment = target_segments[g];
+    if (seen_through < 2)  // freeSpaceRun () must resolve two
+      continue;
     const int firm = firmlySeenThrough (scene, segment, object, T_static);
-    if (seen_through < 2 || firm == 0)  // freeSpaceRun () must resolve two, and the slide a firm one
+    if (firm == 0)  // the slide must resolve a firm one
       continue;
     const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
     const double coarse_step = 2.0 * parameters.overlap_radius;

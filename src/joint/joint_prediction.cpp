@@ -1,6 +1,10 @@
 #include <pcl_crf/clustering/scan_segmentation.h>
 #include <pcl_crf/joint/joint_estimation.h>
 
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace pcl_crf {
 namespace joint {
 
@@ -17,8 +21,12 @@ toPrediction (const Eigen::Matrix2Xd& source, const joint::JointResult& result)
   Prediction prediction;
   prediction.source_match = result.source_match;
   std::vector<bool> moved_away (result.source_cluster.size (), false);
-  for (int i : result.moved_away)
-    moved_away.at (static_cast<std::size_t> (i)) = true;
+  for (int i : result.moved_away) {
+    if (i < 0 || static_cast<std::size_t> (i) >= moved_away.size ())
+      throw std::invalid_argument ("[pcl_crf::joint::toPrediction] moved-away point " + std::to_string (i) +
+                                   " is not one of the " + std::to_string (moved_away.size ()) + " source points");
+    moved_away[i] = true;
+  }
   std::vector<int> clustered, labels;  // labelled points: the clustered ones and those that moved away
   for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
     if (result.source_cluster[i] != kOutlierCluster || moved_away[i]) {

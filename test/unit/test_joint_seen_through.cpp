@@ -699,7 +699,7 @@ TEST (JointMovedAway, ABoardSeenNearlyEdgeOnDidNotMoveAway)
   EXPECT_EQ (markPointsThatMovedAway (source, target, parameters, result), 0);
 }
 
-TEST (JointMovedAway, RejectsResultsThatDoNotFitTheScans)
+TEST (JointMovedAway, RejectsResultsThatDoNotFitTheScansOrMarkNoSourcePoint)
 {
   const Scene scene;
   const pcl_crf::matching::SegmentMotionParameters parameters;
@@ -711,6 +711,9 @@ TEST (JointMovedAway, RejectsResultsThatDoNotFitTheScans)
   JointResult bad_cluster = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
   bad_cluster.source_cluster[0] = 4;
   EXPECT_THROW (markPointsThatMovedAway (scene.source, scene.target, parameters, bad_cluster), std::invalid_argument);
+  JointResult bad_mark = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
+  bad_mark.moved_away = {static_cast<int> (scene.source.cols ())};
+  EXPECT_THROW (pcl_crf::joint::toPrediction (scene.source, bad_mark), std::invalid_argument);
 }
 
 }  // namespace
