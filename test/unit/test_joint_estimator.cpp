@@ -762,6 +762,33 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   EXPECT_GT (estimator.getCorrespondences ().size (), source->size () / 2);
 }
 
+/** Aligns \a pair's scans at float precision with \a estimator (the shipped model, the
+ *  pair's odometry), the source cloud holding a NaN point at index 7; \a direct receives
+ *  estimateJoint on what the adapter sees (the valid points, the float odometry).
+ *  \return whether the alignment converged. */
+bool
+alignWithANaNAt7 (const ScanPair& pair, pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>& estimator,
+                  joint::JointResult& direct)
+{
+  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
+  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
+  auto source_cloud = toCloud (source);
+  source_cloud->insert (source_cloud->begin () + 7,
+                        pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  if (!estimator.loadModel (kModelPath))
+    return false;
+  estimator.setInputSource (source_cloud);
+  estimator.setInputTarget (toCloud (target));
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  estimator.setOdometry (odometry, pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  estimator.align (aligned);
+  Odometry as_given = pair.odometry;  // what the adapter sees: the float matrix
+  as_given.T_source_target = toRigid2d (odometry);
+  direct = joint::estimateJoint (source, target, as_given, shippedModel ());
+  return estimator.hasConverged ();
+}
+
 TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
 {
   // A 1081-beam pair over 270° with a NaN point: the adapter's clusters and
@@ -772,26 +799,11 @@ TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
   config.laser.beam_count = 1081;
   config.laser.field_of_view = 1.5 * M_PI;
   const ScanPair pair = simulation::ScanPairSimulator (config).simulate (0);
-  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
-  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
-  ASSERT_LT (thinToSpacing (source, shippedModel ().matcher.parameters.training_beam_spacing).kept.size (),
-             static_cast<std::size_t> (source.cols ()));  // it is thinned
-  auto source_cloud = toCloud (source);
-  source_cloud->insert (source_cloud->begin () + 7,
-                        pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  ASSERT_LT (thinToSpacing (pair.source, shippedModel ().matcher.parameters.training_beam_spacing).kept.size (),
+             static_cast<std::size_t> (pair.source.cols ()));  // it is thinned
   pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
-  ASSERT_TRUE (estimator.loadModel (kModelPath));
-  estimator.setInputSource (source_cloud);
-  estimator.setInputTarget (toCloud (target));
-  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
-  estimator.setOdometry (odometry, pair.odometry.covariance);
-  pcl::PointCloud<pcl::PointXYZ> aligned;
-  estimator.align (aligned);
-  ASSERT_TRUE (estimator.hasConverged ());
-
-  Odometry as_given = pair.odometry;  // what the adapter sees: the float matrix
-  as_given.T_source_target = toRigid2d (odometry);
-  const joint::JointResult direct = joint::estimateJoint (source, target, as_given, shippedModel ());
+  joint::JointResult direct;
+  ASSERT_TRUE (alignWithANaNAt7 (pair, estimator, direct));
   const auto cloudIndex = [] (int k) { return k < 7 ? k : k + 1; };  // the NaN point sits at 7
   pcl::Correspondences expected;
   for (std::size_t k = 0; k < direct.source_match.size (); ++k)
@@ -815,23 +827,9 @@ TEST (JointCRFEstimator, ReportsThePointsThatMovedAwayWithCloudIndices)
   // Simulator seed 3003, pair 23 (see JointEstimation.ACarThatLeftTheTargetsViewIsNot…),
   // with a NaN point at 7: the 40 points of the car that left, at their cloud indices.
   const ScanPair pair = freshPairOfSeed3003 (23);
-  const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
-  const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();
-  auto source_cloud = toCloud (source);
-  source_cloud->insert (source_cloud->begin () + 7,
-                        pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
   pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
-  ASSERT_TRUE (estimator.loadModel (kModelPath));
-  estimator.setInputSource (source_cloud);
-  estimator.setInputTarget (toCloud (target));
-  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
-  estimator.setOdometry (odometry, pair.odometry.covariance);
-  pcl::PointCloud<pcl::PointXYZ> aligned;
-  estimator.align (aligned);
-  ASSERT_TRUE (estimator.hasConverged ());
-  Odometry as_given = pair.odometry;
-  as_given.T_source_target = toRigid2d (odometry);
-  const joint::JointResult direct = joint::estimateJoint (source, target, as_given, shippedModel ());
+  joint::JointResult direct;
+  ASSERT_TRUE (alignWithANaNAt7 (pair, estimator, direct));
   ASSERT_EQ (direct.moved_away.size (), 40u);
   pcl::Indices expected;
   for (const int i : direct.moved_away)
