@@ -65,51 +65,47 @@ movedPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const 
 /** No limit on a count of points seen through. */
 constexpr int kNoLimit = std::numeric_limits<int>::max ();
 
-/** \a counted plus the target points of \a segment the source saw through when moved
- *  back by T⁻¹ (T_target_source): under T they were not there, so they moved in.
- *  Counting stops once the sum exceeds \a limit (the sum returned is then above it
+/** What a sensor's view says of a point in its frame: matching::seesThrough () or
+ *  matching::seesThroughFirmly (). */
+using ViewTest = bool (*) (const matching::RangeProfile&, const Eigen::Vector2d&, const matching::BreakpointDistance&);
+
+/** \a counted plus the target points of \a segment the source saw through (\a test)
+ *  when moved back by T⁻¹ (T_target_source): under T they were not there, so they moved
+ *  in. Counting stops once the sum exceeds \a limit (the sum returned is then above it
  *  but may fall short of the full count). */
 int
 segmentSeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const Rigid2d& T,
-                    int counted = 0, int limit = kNoLimit)
+                    int counted = 0, int limit = kNoLimit, ViewTest test = matching::seesThrough)
 {
   const Rigid2d T_inverse = T.inverse ();
   const detail::SensorView& seen = scene.views.sourceView ();
   for (int j = segment.begin; j < segment.end && counted <= limit; ++j)
-    counted += matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint);
+    counted += test (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint);
   return counted;
 }
 
-/** \a counted plus the object's points the target saw through when moved by T (under
- *  T they are no longer there); stops above \a limit as segmentSeenThrough () does. */
+/** \a counted plus the object's points the target saw through (\a test) when moved by T
+ *  (under T they are no longer there); stops above \a limit as segmentSeenThrough () does. */
 int
 objectSeenThrough (const FreeSpaceScene& scene, const std::vector<int>& object, const Rigid2d& T,
-                   int counted = 0, int limit = kNoLimit)
+                   int counted = 0, int limit = kNoLimit, ViewTest test = matching::seesThrough)
 {
   const detail::SensorView& seen = scene.views.targetView ();
   for (std::size_t k = 0; k < object.size () && counted <= limit; ++k)
-    counted += matching::seesThrough (seen.profile, T * scene.source.col (object[k]), seen.breakpoint);
+    counted += test (seen.profile, T * scene.source.col (object[k]), seen.breakpoint);
   return counted;
 }
 
-/** The firm evidence under motion T that the object moved: how many points of target
- *  \a segment the source saw through, and of the object the target saw through, by
- *  matching::seesThroughFirmly (). Beams a surface's edges dropped are none: a parked
- *  car's edge returns, dropped at one end in one scan and at the other in the next, look
- *  like a slide of one beam. */
+/** The firm evidence under motion T that the object moved: the points of target
+ *  \a segment and of the object seen through by matching::seesThroughFirmly (). Beams a
+ *  surface's edges dropped are none: a parked car's edge returns, dropped at one end in
+ *  one scan and at the other in the next, look like a slide of one beam. */
 int
 firmlySeenThrough (const FreeSpaceScene& scene, const matching::ScanSegment& segment, const std::vector<int>& object,
                    const Rigid2d& T)
 {
-  const Rigid2d T_inverse = T.inverse ();
-  const detail::SensorView& source_view = scene.views.sourceView ();
-  int firm = 0;
-  for (int j = segment.begin; j < segment.end; ++j)
-    firm += matching::seesThroughFirmly (source_view.profile, T_inverse * scene.target.col (j), source_view.breakpoint);
-  const detail::SensorView& target_view = scene.views.targetView ();
-  for (int i : object)
-    firm += matching::seesThroughFirmly (target_view.profile, T * scene.source.col (i), target_view.breakpoint);
-  return firm;
+  const int on_segment = segmentSeenThrough (scene, segment, T, 0, kNoLimit, matching::seesThroughFirmly);
+  return objectSeenThrough (scene, object, T, on_segment, kNoLimit, matching::seesThroughFirmly);
 }
 
 /** Per point of \a points: its nearest target point when T puts it within that

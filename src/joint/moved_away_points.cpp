@@ -6,6 +6,7 @@
 #include "cluster_numbering.h"
 #include "scan_views.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace pcl_crf {
@@ -65,9 +66,13 @@ detail::markPointsThatMovedAway (const ScanViews& views, JointResult& result)
   if (!canSeparateFromStaticWorld (source, views.target (), result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  for (const matching::ScanSegment& segment : views.sourceSegments ())
-    appendRuns (segment, seenLeaving (views, segment, T_static, result), views.parameters ().min_segment_points,
-                result.moved_away);
+  const int min_points = views.parameters ().min_segment_points;
+  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
+    const auto first = result.source_cluster.begin () + segment.begin;
+    if (std::count (first, first + segment.size (), kOutlierCluster) < min_points)
+      continue;  // no run of outliers long enough
+    appendRuns (segment, seenLeaving (views, segment, T_static, result), min_points, result.moved_away);
+  }
   return static_cast<int> (result.moved_away.size ());
 }
 

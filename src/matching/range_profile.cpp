@@ -215,6 +215,19 @@ enum class ReturnsNear
   Mixed       // some lie within the breakpoint distance of the point, or on both sides
 };
 
+/** How a return at \a return_range lies against a point at \a range: Farther, Nearer, or
+ *  Mixed (within the breakpoint distance, taken at the smaller range as the breakpoint
+ *  detector takes it). */
+ReturnsNear
+compareWithReturn (double return_range, double range, const BreakpointDistance& distance)
+{
+  if (return_range > range + range * distance.slope + distance.offset)
+    return ReturnsNear::Farther;
+  if (return_range * (1.0 + distance.slope) + distance.offset < range)
+    return ReturnsNear::Nearer;
+  return ReturnsNear::Mixed;
+}
+
 /** Compares \a point with the returns within one step of its bearing (see ReturnsNear;
  *  OutOfView as well for a profile that cannot tell: fewer than two returns, no step). */
 ReturnsNear
@@ -228,7 +241,6 @@ compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& poin
   if (!inField (profile, theta))
     return ReturnsNear::OutOfView;
   const double range = point.norm ();
-  const double margin = range * distance.slope + distance.offset;
   const Eigen::Index after = firstReturnNotBefore (profile, theta);
   bool farther = false, nearer = false;
   for (const Eigen::Index direction : {Eigen::Index (-1), Eigen::Index (1)}) {  // outwards from theta
@@ -239,13 +251,11 @@ compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& poin
                                      counterClockwise (theta, profile.bearings (j)));
       if (apart > step)
         break;
-      // The breakpoint distance at the smaller range, as the breakpoint detector takes it.
-      if (profile.ranges (j) > range + margin)
-        farther = true;
-      else if (profile.ranges (j) * (1.0 + distance.slope) + distance.offset < range)
-        nearer = true;
-      else
-        return ReturnsNear::Mixed;
+      switch (compareWithReturn (profile.ranges (j), range, distance)) {
+        case ReturnsNear::Farther: farther = true; break;
+        case ReturnsNear::Nearer: nearer = true; break;
+        default: return ReturnsNear::Mixed;
+      }
     }
   }
   if (farther && nearer)
@@ -262,19 +272,25 @@ continuesAReturnAcrossOneBeam (const RangeProfile& profile, const Eigen::Vector2
 {
   const Eigen::Index m = profile.bearings.size ();
   const double theta = bearingFrom (profile, point);
-  const double range = point.norm ();
-  const double margin = range * distance.slope + distance.offset;
   const Eigen::Index after = firstReturnNotBefore (profile, theta);
   for (const Eigen::Index k : {after - 1, after}) {
     const Eigen::Index j = (k % m + m) % m;  // wrapping (near only on a full circle)
     const double apart = std::min (counterClockwise (profile.bearings (j), theta),
                                    counterClockwise (theta, profile.bearings (j)));
-    const bool farther = profile.ranges (j) > range + margin;
-    const bool nearer = profile.ranges (j) * (1.0 + distance.slope) + distance.offset < range;
-    if (apart <= 2.0 * profile.step && !farther && !nearer)
+    if (apart <= 2.0 * profile.step &&
+        compareWithReturn (profile.ranges (j), point.norm (), distance) == ReturnsNear::Mixed)
       return true;
   }
   return false;
+}
+
+/** Whether a point no return lies within one step of is nearer than the farthest return
+ *  by more than the breakpoint distance: beams there would have seen it in range. */
+bool
+withinTheProfilesRange (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance)
+{
+  const double range = point.norm ();
+  return range + range * distance.slope + distance.offset < profile.max_range;
 }
 
 /** seesThrough () and seesThroughToAReturn (): \a empty_beams_free says whether a
@@ -285,10 +301,7 @@ seesThroughPoint (const RangeProfile& profile, const Eigen::Vector2d& point, con
 {
   switch (compareWithReturnsNear (profile, point, distance)) {
     case ReturnsNear::Farther: return true;
-    case ReturnsNear::None: {
-      const double range = point.norm ();
-      return empty_beams_free && range + range * distance.slope + distance.offset < profile.max_range;
-    }
+    case ReturnsNear::None: return empty_beams_free && withinTheProfilesRange (profile, point, distance);
     default: return false;
   }
 }
@@ -316,7 +329,7 @@ seesThroughFirmly (const RangeProfile& profile, const Eigen::Vector2d& point, co
   switch (compareWithReturnsNear (profile, point, distance)) {
     case ReturnsNear::Farther: return true;
     case ReturnsNear::None:
-      return seesThroughPoint (profile, point, distance, true) &&
+      return withinTheProfilesRange (profile, point, distance) &&
              !continuesAReturnAcrossOneBeam (profile, point, distance);
     default: return false;
   }
