@@ -143,6 +143,13 @@ public:
   clustering::MergeEvidence
   getMergeEvidence () const { return parameters_.merge_evidence; }
 
+  /** \brief Which pairs refit each cluster's motion; default clustering::MotionFit::OwnPoints. */
+  void
+  setMotionFit (clustering::MotionFit fit) { parameters_.motion_fit = fit; }
+
+  clustering::MotionFit
+  getMotionFit () const { return parameters_.motion_fit; }
+
   /** \brief Smallest neighbour distance in the weighted neighbour feature [m] (> 0);
    *  default 0.01. Part of the model: loadModel () sets it, change it only with weights
    *  learned that way. */

@@ -1,5 +1,8 @@
 #include <pcl_crf/clustering/cluster_fits.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace pcl_crf {
 namespace clustering {
 
@@ -11,6 +14,15 @@ oneHot (const std::vector<int>& labels, int cluster_count)
     if (labels[i] >= 0 && labels[i] < cluster_count)
       weights (labels[i], static_cast<Eigen::Index> (i)) = 1.0;
   return weights;
+}
+
+Eigen::MatrixXd
+ownPointWeights (const Eigen::MatrixXd& marginals, const std::vector<int>& labels)
+{
+  if (static_cast<Eigen::Index> (labels.size ()) != marginals.cols ())
+    throw std::invalid_argument ("[pcl_crf::clustering::ownPointWeights] " + std::to_string (labels.size ()) +
+                                 " labels for " + std::to_string (marginals.cols ()) + " marginal columns");
+  return oneHot (labels, static_cast<int> (marginals.rows ())).cwiseProduct (marginals);
 }
 
 std::vector<RigidFitAccumulator>

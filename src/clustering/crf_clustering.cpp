@@ -125,6 +125,15 @@ keptMarginals (const Workspace& workspace, const std::vector<int>& kept, int clu
   return marginals;
 }
 
+/** The weights of the refit after a round (Eq. (3), MotionFit): the marginals of
+ *  every pair, or only of each cluster's own (MAP) pairs. */
+Eigen::MatrixXd
+fitWeights (const CrfClusteringResult& round, const CrfClusteringParameters& parameters)
+{
+  return parameters.motion_fit == MotionFit::OwnPoints ? ownPointWeights (round.marginals, round.labels)
+                                                       : round.marginals;
+}
+
 /** Renumbers the clusters by decreasing size (ties: previous order). */
 void
 sortBySize (CrfClusteringResult& result)
@@ -200,10 +209,10 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   std::vector<int> every;  // 0 … S − 1
   while (result.iterations < parameters.max_iterations && !result.converged)
   {
-    // Eq. (3): first the segments (hard), then the marginals of the previous round.
+    // Eq. (3): first the segments (hard), then the marginals of the previous round (MotionFit).
     const std::vector<Rigid2d> motions = result.iterations == 0
                                              ? fitMotions (pairs, result.labels, cluster_count)
-                                             : solveFits (accumulateFits (pairs, result.marginals));
+                                             : solveFits (accumulateFits (pairs, fitWeights (result, parameters)));
     ++result.iterations;
     std::vector<int> labels = propagate (pairs, weights, parameters, motions, workspace);
     const bool same_labels = labels == result.labels;
@@ -220,7 +229,7 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
       kept = selectClusters (keptMarginals (workspace, every, cluster_count), labels, parameters.max_average_neff);
     }
     result.converged = same_labels && static_cast<int> (kept.size ()) == cluster_count;
-    // The kept clusters' marginals, renumbered and renormalised: the next fit weights (Eq. (3)).
+    // The kept clusters' marginals, renumbered and renormalised: the next fit's weights (Eq. (3)).
     result.marginals = keptMarginals (workspace, kept, cluster_count);
     std::vector<int> renumbered (static_cast<std::size_t> (cluster_count), -1);
     for (std::size_t k = 0; k < kept.size (); ++k)
@@ -233,7 +242,7 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
     result.labels.swap (labels);
     cluster_count = static_cast<int> (kept.size ());
   }
-  result.motions = solveFits (accumulateFits (pairs, result.marginals));  // Eq. (3), weighted by the marginals
+  result.motions = solveFits (accumulateFits (pairs, fitWeights (result, parameters)));  // Eq. (3)
   sortBySize (result);
   result.static_cluster = odometry ? selectStaticCluster (result.motions, *odometry, result.sizes) : 0;
   return result;

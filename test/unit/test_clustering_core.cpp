@@ -174,6 +174,20 @@ TEST (ClusteringFits, HardAndSoftFitsRecoverKnownMotions)
   EXPECT_THROW (makePointPairs (source, target, match), std::invalid_argument);
 }
 
+TEST (ClusteringFits, OwnPointWeightsKeepEachPairsMarginalForItsMapClusterOnly)
+{
+  Eigen::MatrixXd marginals (3, 4);
+  marginals << 0.7, 0.1, 0.2, 0.0,  //
+      0.2, 0.8, 0.3, 0.5,           //
+      0.1, 0.1, 0.5, 0.5;
+  Eigen::MatrixXd expected (3, 4);
+  expected << 0.7, 0.0, 0.0, 0.0,  //
+      0.0, 0.8, 0.0, 0.0,          //
+      0.0, 0.0, 0.5, 0.0;          // pair 3's label (-1, an outlier) holds no cluster
+  EXPECT_EQ (ownPointWeights (marginals, {0, 1, 2, -1}).cwiseNotEqual (expected).count (), 0);
+  EXPECT_THROW (ownPointWeights (marginals, {0, 1, 2}), std::invalid_argument);
+}
+
 TEST (ClusteringModel, RoundTripsAndRejectsBrokenFiles)
 {
   CrfClusteringModel model;

@@ -251,9 +251,11 @@ TEST (CrfClustering, LearnsWeightsThatSeparateMotions)
                                              UnpairedLabelling::Outlier);
   // The world and the car are the two largest clusters. (Three points at the far
   // corner of the back wall, whose nearest-point associations jump the corner, may
-  // form a cluster of their own: 2 or 3 clusters.)
+  // form a cluster of their own, and so may the near façade's farthest point, whose
+  // association jumps along it: refitted to their own pairs, neither is pulled back
+  // into the world's motion. 2 to 4 clusters, the world and the car 98 % of the pairs.)
   ASSERT_GE (result.motions.size (), 2u);
-  EXPECT_LE (result.motions.size (), 3u);
+  EXPECT_LE (result.motions.size (), 4u);
   EXPECT_EQ (result.static_cluster, 0);
   EXPECT_LT (motionError (result.motions[0], test.objects[0].T_target_source).first, 0.05);
   EXPECT_LT (motionError (result.motions[1], test.objects[1].T_target_source).first, 0.05);
@@ -285,6 +287,56 @@ TEST (CrfClustering, FindsACarMovingAlongItsOwnOutlineThatConsistencyMisses)
   EXPECT_GT (movingObjectRecall (crf.source_cluster, pair.source_object), 0.95);
   EXPECT_LT (motionError (crf.motions[0], pair.objects[0].T_target_source).first, 0.02);
   EXPECT_LT (motionError (crf.motions[1], pair.objects[1].T_target_source).first, 0.02);
+}
+
+/** \a pair with Gaussian range noise of \a sigma on every point of both scans. */
+ScanPair
+withRangeNoise (ScanPair pair, double sigma, unsigned seed)
+{
+  std::mt19937 rng (seed);
+  std::normal_distribution<double> noise (0.0, sigma);
+  for (Eigen::Matrix2Xd* scan : {&pair.source, &pair.target})
+    for (Eigen::Index i = 0; i < scan->cols (); ++i)
+      scan->col (i) *= 1.0 + noise (rng) / scan->col (i).norm ();
+  return pair;
+}
+
+TEST (CrfClustering, KeepsANearbySmallCarWhoseFitTheWallsWouldPullToTheirMotion)
+{
+  // Like the real 1/10-scale cars of the overtakes bag: a small box 0.4–0.6 m from the
+  // sensor drives 5 cm ahead of the ego, the walls are 4–26 m away, 1 cm range noise.
+  // There the motions differ by several beam spacings on the box and by less than one
+  // on the walls, so every wall pair keeps a little of the box's marginal. Refitted to
+  // the marginals of every pair (the paper's Eq. (3)), the box's motion is pulled
+  // towards the walls' until the N_eff test merges it; refitted to its own pairs it stays.
+  const Eigen::VectorXd weights = (Eigen::VectorXd (kWeightCount) << 0.11, -1.12, 1.98, 3.72, -0.76).finished ();
+  const Rigid2d ego = makeRigid2d (0.065, 0.0, -0.03);
+  const Rigid2d car = makeRigid2d (0.115, 0.0, -0.03);
+  for (const auto& [box_min, box_max] : {std::pair<Eigen::Vector2d, Eigen::Vector2d> ({0.1, 0.4}, {0.25, 0.5}),
+                                          std::pair<Eigen::Vector2d, Eigen::Vector2d> ({0.1, 0.6}, {0.4, 0.7})})
+  {
+    const ScanPair pair = withRangeNoise (makePair (street (box_min, box_max), ego, car, false), 0.01, 1);
+    for (const MotionFit fit : {MotionFit::OwnPoints, MotionFit::Marginals})
+    {
+      CrfClusteringParameters parameters;
+      parameters.motion_fit = fit;
+      const ScanClustering result = clusterScan (pair.source, pair.target, pair.source_match, weights, parameters,
+                                                 &pair.odometry, UnpairedLabelling::Outlier);
+      const double recall = movingObjectRecall (result.source_cluster, pair.source_object);
+      if (fit == MotionFit::Marginals)
+      {
+        EXPECT_EQ (result.motions.size (), 1u) << "box at y " << box_min.y ();
+        EXPECT_EQ (recall, 0.0) << "box at y " << box_min.y ();
+        continue;
+      }
+      ASSERT_EQ (result.motions.size (), 2u) << "box at y " << box_min.y ();
+      EXPECT_EQ (recall, 1.0) << "box at y " << box_min.y ();
+      // Both motions from 1 cm noise and nearest-point associations: the box's within 2 cm
+      // of its 5 cm step, the walls' (up to 26 m away, where rotation counts) within 4 cm.
+      EXPECT_LT (motionError (result.motions[1], pair.objects[1].T_target_source).first, 0.02);
+      EXPECT_LT (motionError (result.motions[0], pair.objects[0].T_target_source).first, 0.04);
+    }
+  }
 }
 
 TEST (ConsistencyDetection, FindsACarThatLeftItsPlace)

@@ -15,9 +15,16 @@ namespace clustering {
 Eigen::MatrixXd
 oneHot (const std::vector<int>& labels, int cluster_count);
 
+/** \brief S x n weights of MotionFit::OwnPoints: column i holds marginals(labels[i], i)
+ *  in row labels[i] and zeros elsewhere (labels outside [0, S) give an all-zero column).
+ *  \throws std::invalid_argument when labels and marginals differ in size. */
+Eigen::MatrixXd
+ownPointWeights (const Eigen::MatrixXd& marginals, const std::vector<int>& labels);
+
 /** \brief Running sums of every cluster's weighted least-squares fit (Eq. (3)):
  *  cluster l holds pair i with weight weights(l, i).
- *  \param[in] weights S x n non-negative weights (hard: oneHot (); soft: marginals)
+ *  \param[in] weights S x n non-negative weights (hard: oneHot (); soft: marginals or
+ *  ownPointWeights ())
  */
 std::vector<RigidFitAccumulator>
 accumulateFits (const PointPairs& pairs, const Eigen::MatrixXd& weights);
