@@ -143,7 +143,7 @@ public:
   clustering::MergeEvidence
   getMergeEvidence () const { return parameters_.merge_evidence; }
 
-  /** \brief Which pairs refit each cluster's motion; default clustering::MotionFit::OwnPoints. */
+  /** \brief Which pairs refit each cluster's motion; default clustering::MotionFit::Marginals. */
   void
   setMotionFit (clustering::MotionFit fit) { parameters_.motion_fit = fit; }
 

@@ -154,7 +154,8 @@ matchedClusteredPoints (const std::vector<int>& source_match, const std::vector<
 /** CRF-Clustering (the model's clustering weights) of the final associations: the
  *  clusters and motions of \a result given its associations, which stand. Its
  *  sum-product marginals and N_eff merging keep apart clusters whose motions differ by
- *  little, which the ladder's hard refits let collapse into one. Without any
+ *  little, which the ladder's hard refits let collapse into one; each cluster is
+ *  refitted as JointParameters::final_motion_fit says. Without any
  *  association the ladder's clusters stand. */
 void
 clusterFinalAssociations (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Odometry& odometry,
@@ -162,6 +163,7 @@ clusterFinalAssociations (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
 {
   clustering::CrfClusteringParameters settings = parameters.initial_clustering;
   settings.features = model.initial_clustering.features;
+  settings.motion_fit = parameters.final_motion_fit;
   const clustering::ScanClustering scan =
       clustering::clusterScan (source, target, result.source_match, model.initial_clustering.weights, settings,
                                &odometry, clustering::UnpairedLabelling::Outlier);

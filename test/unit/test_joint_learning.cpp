@@ -36,7 +36,7 @@ std::vector<ScanPair>
 consecutivePairs (std::size_t count)
 {
   pcl_crf::simulation::SimulatorConfig config;
-  config.seed = 890;
+  config.seed = 888;
   config.spacing = pcl_crf::simulation::ScanSpacing::Consecutive;
   config.scan_rate = 20.0;
   return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
@@ -88,12 +88,10 @@ TEST (JointLearning, OneStandardErrorRuleRejectsBadInput)
 
 TEST (JointLearning, ConsecutiveScansTakeATighterPriorThanTheLooseOneTheyDefeat)
 {
-  // With σ = 10 alone, full inference with the learnt weights associates 0.747 of
-  // these pairs' points; the grid takes σ = 1 (0.804). Measured with the shipped
-  // matcher and initial clustering, which stand in for trainJointModel's first steps.
-  // (Seed 888 no longer separates them since CRF-Clustering refits each cluster to its
-  // own pairs: σ = 10 reaches 0.72–0.75 there, depending on the build's rounding,
-  // against 0.743.)
+  // With σ = 10 alone, pseudo-likelihood gives the outlier-cluster switch a weight of
+  // about 6 on these pairs and full inference on them associates 0.708 of the points;
+  // the grid keeps σ = 3 (0.750). Measured with the shipped matcher and initial
+  // clustering, which stand in for trainJointModel's first steps.
   const std::vector<ScanPair> pairs = consecutivePairs (16);
   JointModel loose = shippedModel ();
   JointLearningOptions only_loose;

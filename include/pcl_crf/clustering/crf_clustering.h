@@ -26,14 +26,18 @@ enum class MergeEvidence
 /** \brief Which pairs a cluster's motion is refitted to between rounds (Eq. (3)). */
 enum class MotionFit
 {
-  /** the pairs whose MAP cluster it is, each weighted by its marginal p(x_i = l)
-   *  (ownPointWeights ()). A large cluster's points cannot pull a small cluster's
-   *  motion towards their own: on a real 1/10-scale car 0.5 m away moving 5 cm against
-   *  the walls, 130 wall points of marginal 0.05–0.1 outweighed the car's 14 points in
-   *  its fit, the two motions met, and N_eff merged the car away. */
-  OwnPoints,
-  /** every pair, weighted by its marginal p(x_i = l) (the paper's Eq. (3)). */
-  Marginals
+  /** every pair, weighted by its marginal p(x_i = l) (the paper's Eq. (3)). The
+   *  small marginals of a large cluster's pairs pull a small cluster's motion towards
+   *  its own: a few pairs of wrong associations are drawn back into the motions around
+   *  them, but so is a small object whose motion differs from the world's by a few
+   *  beam spacings. */
+  Marginals,
+  /** the pairs whose MAP cluster it is, each weighted by its marginal
+   *  (ownPointWeights ()): for associations taken under the clusters' motions, where a
+   *  small cluster's pairs agree with it. On a real 1/10-scale car 0.5 m away moving
+   *  5 cm against the walls, 130 wall pairs of marginal 0.05–0.1 outweighed the car's
+   *  14 in its Marginals fit, the two motions met, and N_eff merged the car away. */
+  OwnPoints
 };
 
 /** \brief Settings of CRF-Clustering inference (Tipaldi & Ramos, IROS 2009, Sec. IV-D, IV-E). */
@@ -55,8 +59,8 @@ struct CrfClusteringParameters
   double max_average_neff = 1.7;
   /** what N_eff is computed from; default MergeEvidence::Local. */
   MergeEvidence merge_evidence = MergeEvidence::Local;
-  /** which pairs refit each cluster's motion after a round; default MotionFit::OwnPoints. */
-  MotionFit motion_fit = MotionFit::OwnPoints;
+  /** which pairs refit each cluster's motion after a round; default MotionFit::Marginals. */
+  MotionFit motion_fit = MotionFit::Marginals;
   /** a cluster whose local log-potential at a node is more than this below the
    *  node's best is not a state of that node (keeps inference near O(n)) [nats];
    *  > 0, default 30 (its probability is below e⁻³⁰ before neighbours are counted). */

@@ -23,6 +23,14 @@ struct JointParameters
   /** the initial clusters: CRF-Clustering of the first association pass (its
    *  over-segmentation, merging and iteration settings). */
   clustering::CrfClusteringParameters initial_clustering;
+  /** how the final CRF-Clustering, of the associations taken under the ladder's cluster
+   *  motions, refits its clusters (its other settings are initial_clustering's). Default
+   *  clustering::MotionFit::OwnPoints: there a small cluster's pairs follow its motion,
+   *  and a large cluster's must not pull it away (on the real overtakes bag V 0.712 →
+   *  0.743). The initial clustering keeps its own setting (Marginals by default): pass 1's
+   *  associations are not yet taken under any cluster's motion, and OwnPoints there
+   *  keeps small clusters of wrong associations as starts for the ladder. */
+  clustering::MotionFit final_motion_fit = clustering::MotionFit::OwnPoints;
   /** rounds of inference → removal of vacuous and ambiguous clusters → inference (≥ 1); default 3. */
   int max_rounds = 3;
   /** a cluster with fewer MAP points than this is vacuous and removed [points];
