@@ -242,7 +242,8 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
     result.labels.swap (labels);
     cluster_count = static_cast<int> (kept.size ());
   }
-  result.motions = solveFits (accumulateFits (pairs, fitWeights (result, parameters)));  // Eq. (3)
+  // Eq. (3), weighted by the marginals whatever MotionFit the rounds refitted with.
+  result.motions = solveFits (accumulateFits (pairs, result.marginals));
   sortBySize (result);
   result.static_cluster = odometry ? selectStaticCluster (result.motions, *odometry, result.sizes) : 0;
   return result;
