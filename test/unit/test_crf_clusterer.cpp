@@ -228,6 +228,9 @@ TEST (CRFClusterer, LoadsTheShippedModelAndKeepsParameters)
   clusterer.setMaxStates (4);
   clusterer.setPruningMargin (20.0);
   clusterer.setMaxAverageEffectiveClusters (1.5);
+  EXPECT_EQ (clusterer.getMotionFit (), pcl_crf::clustering::MotionFit::Marginals);  // the paper's Eq. (3)
+  clusterer.setMotionFit (pcl_crf::clustering::MotionFit::OwnPoints);
+  EXPECT_EQ (clusterer.getMotionFit (), pcl_crf::clustering::MotionFit::OwnPoints);
   EXPECT_EQ (clusterer.getSegmentBreakDistance (), 0.7);
   EXPECT_EQ (clusterer.getMaxSegmentPoints (), 30);
   EXPECT_EQ (clusterer.getMaxStates (), 4);
