@@ -126,12 +126,14 @@ keptMarginals (const Workspace& workspace, const std::vector<int>& kept, int clu
 }
 
 /** The weights of the refit after a round (Eq. (3), MotionFit): the marginals of
- *  every pair, or only of each cluster's own (MAP) pairs. */
-Eigen::MatrixXd
-fitWeights (const CrfClusteringResult& round, const CrfClusteringParameters& parameters)
+ *  every pair (no copy), or only of each cluster's own (MAP) pairs, written to \a own. */
+const Eigen::MatrixXd&
+fitWeights (const CrfClusteringResult& round, const CrfClusteringParameters& parameters, Eigen::MatrixXd& own)
 {
-  return parameters.motion_fit == MotionFit::OwnPoints ? ownPointWeights (round.marginals, round.labels)
-                                                       : round.marginals;
+  if (parameters.motion_fit == MotionFit::Marginals)
+    return round.marginals;
+  own = ownPointWeights (round.marginals, round.labels);
+  return own;
 }
 
 /** Renumbers the clusters by decreasing size (ties: previous order). */
@@ -207,12 +209,13 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
   static thread_local Workspace workspace;
   workspace.scales = unaryScales (pairs, parameters.features);
   std::vector<int> every;  // 0 … S − 1
+  Eigen::MatrixXd own_weights;  // MotionFit::OwnPoints' refit weights
   while (result.iterations < parameters.max_iterations && !result.converged)
   {
     // Eq. (3): first the segments (hard), then the marginals of the previous round (MotionFit).
     const std::vector<Rigid2d> motions = result.iterations == 0
                                              ? fitMotions (pairs, result.labels, cluster_count)
-                                             : solveFits (accumulateFits (pairs, fitWeights (result, parameters)));
+                                             : solveFits (accumulateFits (pairs, fitWeights (result, parameters, own_weights)));
     ++result.iterations;
     std::vector<int> labels = propagate (pairs, weights, parameters, motions, workspace);
     const bool same_labels = labels == result.labels;
