@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +20,30 @@ namespace pcl_crf {
 namespace joint {
 
 namespace {
+
+/** Which surface every target point and every target segment lies on. */
+struct TargetSurfaces
+{
+  std::vector<int> of_point;    // per target point: its surface, -1 for none
+  std::vector<int> of_segment;  // per target segment: its surface
+
+  /** Numbers the points by \a of_segment. */
+  TargetSurfaces (const std::vector<matching::ScanSegment>& segments, Eigen::Index points, std::vector<int> surface)
+    : of_point (static_cast<std::size_t> (points), -1), of_segment (std::move (surface))
+  {
+    for (std::size_t g = 0; g < segments.size (); ++g)
+      std::fill (of_point.begin () + segments[g].begin, of_point.begin () + segments[g].end, of_segment[g]);
+  }
+
+  TargetSurfaces () = default;
+
+  /** Target segment \a segment's surface holds another segment. */
+  bool
+  joinsOthers (int segment) const
+  {
+    return std::count (of_segment.begin (), of_segment.end (), of_segment[segment]) > 1;
+  }
+};
 
 /** Everything the search for moved-in objects reads: both scans with their segments,
  *  what each sensor saw and the target's kd-tree (\a views), and per point the
@@ -30,9 +55,11 @@ struct FreeSpaceScene
   const Eigen::Matrix2Xd& target;
   const matching::SegmentMotionParameters& parameters;
   std::vector<int> source_segment_of;  // per source point: its segment
-  std::vector<int> target_segment_of;  // per target point: its segment
+  TargetSurfaces segments;              // each target segment a surface of its own
+  TargetSurfaces occluded;              // target segments joined behind occluders (occludedSurfaces ())
   std::vector<double> target_spacing;  // per target point: its pointSpacing () on its segment
   std::vector<double> target_radius;   // per target point: its overlap radius on its segment
+  const TargetSurfaces* surfaces = &segments;  // the surfaces the search reads
 };
 
 /** The per-point part of the scene, needed only once a segment has points the source
@@ -42,7 +69,13 @@ completeScene (FreeSpaceScene& scene)
 {
   const std::vector<matching::ScanSegment>& target_segments = scene.views.targetSegments ();
   scene.source_segment_of = matching::segmentOfEachPoint (scene.views.sourceSegments (), scene.source.cols ());
-  scene.target_segment_of = matching::segmentOfEachPoint (target_segments, scene.target.cols ());
+  std::vector<int> own (target_segments.size ());
+  std::iota (own.begin (), own.end (), 0);
+  scene.segments = TargetSurfaces (target_segments, scene.target.cols (), std::move (own));
+  scene.occluded = TargetSurfaces (target_segments, scene.target.cols (),
+                                   matching::occludedSurfaces (scene.target, target_segments,
+                                                               scene.parameters.breakpoint_angle,
+                                                               scene.parameters.range_noise));
   scene.target_spacing.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   scene.target_radius.assign (static_cast<std::size_t> (scene.target.cols ()), 0.0);
   for (const matching::ScanSegment& segment : target_segments)
@@ -126,19 +159,21 @@ landedTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points,
   return landed;
 }
 
-/** The target segment of target point \a j, or -1 for none (j = -1). */
-int
-segmentOfTarget (const FreeSpaceScene& scene, int j)
+/** Target point \a j (-1: none) lies on the surface of target segment \a segment (the
+ *  scene's current surfaces: the segment itself, or with the segments it continues
+ *  behind occluders). */
+bool
+onSurfaceOf (const FreeSpaceScene& scene, int j, int segment)
 {
-  return j >= 0 ? scene.target_segment_of[j] : -1;
+  return j >= 0 && scene.surfaces->of_point[j] == scene.surfaces->of_segment[segment];
 }
 
-/** How many of \a landed (landedTargetPoints ()) lie on target segment \a segment. */
+/** How many of \a landed (landedTargetPoints ()) lie on the surface of target segment \a segment. */
 int
-landedOnSegment (const FreeSpaceScene& scene, const std::vector<int>& landed, int segment)
+landedOnSurfaceOf (const FreeSpaceScene& scene, const std::vector<int>& landed, int segment)
 {
   return static_cast<int> (
-      std::count_if (landed.begin (), landed.end (), [&] (int j) { return segmentOfTarget (scene, j) == segment; }));
+      std::count_if (landed.begin (), landed.end (), [&] (int j) { return onSurfaceOf (scene, j, segment); }));
 }
 
 /** Per source point: for the points of \a free, their landedTargetPoints () under the
@@ -153,27 +188,27 @@ staticTargets (const FreeSpaceScene& scene, const std::vector<int>& free, const 
   return target_of;
 }
 
-/** How many of the object's points the static motion puts on target segment \a segment
- *  (\a static_target, staticTargets ()). */
+/** How many of the object's points the static motion puts on the surface of target
+ *  segment \a segment (\a static_target, staticTargets ()). */
 int
 explainedByStatic (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
                    const std::vector<int>& static_target)
 {
   return static_cast<int> (std::count_if (object.begin (), object.end (), [&] (int i) {
-    return segmentOfTarget (scene, static_target[i]) == segment;
+    return onSurfaceOf (scene, static_target[i], segment);
   }));
 }
 
 /** The candidate object of target segment \a segment: the points of \a free (static
- *  or unclustered) on the source segments of those the static motion puts on it
- *  (\a static_target, staticTargets ()). */
+ *  or unclustered) on the source segments of those the static motion puts on its
+ *  surface (\a static_target, staticTargets ()). */
 std::vector<int>
 objectOnSegment (const FreeSpaceScene& scene, int segment, const std::vector<int>& free,
                  const std::vector<int>& static_target)
 {
   std::vector<bool> on_segment (scene.views.sourceSegments ().size (), false);
   for (int i : free)
-    if (segmentOfTarget (scene, static_target[i]) == segment && scene.source_segment_of[i] >= 0)
+    if (onSurfaceOf (scene, static_target[i], segment) && scene.source_segment_of[i] >= 0)
       on_segment[scene.source_segment_of[i]] = true;
   std::vector<int> object;
   for (int i : free)
@@ -192,8 +227,8 @@ principalAxis (const Eigen::Matrix2Xd& points)
   return solver.eigenvectors ().col (1);  // eigenvalues increase
 }
 
-/** The axis the object slides along: the principal axis of the points of target
- *  segment \a segment the static motion puts the object's points on (\a static_target,
+/** The axis the object slides along: the principal axis of the points on the surface
+ *  of target segment \a segment the static motion puts the object's points on (\a static_target,
  *  staticTargets (); the whole segment's when fewer than two), so that the few points
  *  of another surface the segment runs on into (a wall behind a car's end, within the
  *  breakpoint distance) do not tilt it. */
@@ -203,7 +238,7 @@ slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segm
 {
   std::vector<int> overlapped;
   for (int i : object)
-    if (segmentOfTarget (scene, static_target[i]) == segment)
+    if (onSurfaceOf (scene, static_target[i], segment))
       overlapped.push_back (static_target[i]);
   std::sort (overlapped.begin (), overlapped.end ());
   overlapped.erase (std::unique (overlapped.begin (), overlapped.end ()), overlapped.end ());
@@ -425,7 +460,7 @@ landsAtLeast (const ShiftSearch& search, const FreeSpaceRun& run, int count)
   constexpr double kMostSamples = 64.0;  // each way
   const auto lands = [&] (double shift) {
     const std::vector<int> landed = landedTargetPoints (search.scene, search.object, search.motion (shift));
-    return landedOnSegment (search.scene, landed, search.segment) >= count;
+    return landedOnSurfaceOf (search.scene, landed, search.segment) >= count;
   };
   if (lands (run.middle ()))
     return true;
@@ -487,7 +522,7 @@ addCluster (const FreeSpaceScene& scene, const std::vector<int>& object, int seg
   result.cluster_motions.push_back (T);
   for (std::size_t k = 0; k < object.size (); ++k) {
     result.source_cluster[object[k]] = cluster;
-    result.source_match[object[k]] = segmentOfTarget (scene, landed[k]) == segment ? landed[k] : kNoMatch;
+    result.source_match[object[k]] = onSurfaceOf (scene, landed[k], segment) ? landed[k] : kNoMatch;
   }
 }
 
@@ -502,6 +537,57 @@ freePoints (const JointResult& result)
   return free;
 }
 
+/** The object of moved-in target segment \a g (objectOnSegment () on the scene's current
+ *  surfaces, less the points an earlier segment's object took) made a cluster when a slide
+ *  of the static motion along the segment resolves the points either sensor saw through
+ *  (see separateObjectsInFreeSpace ()). \a static_seen the segment's points the source saw
+ *  through under the static motion. \return true when a cluster was added. */
+bool
+separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, const std::vector<int>& free,
+                         const std::vector<int>& static_target, JointResult& result)
+{
+  const matching::SegmentMotionParameters& parameters = scene.parameters;
+  const Rigid2d T_static = result.cluster_motions[result.static_cluster];
+  std::vector<int> object = objectOnSegment (scene, g, free, static_target);
+  object.erase (std::remove_if (object.begin (), object.end (),
+                                [&] (int i) { return result.source_cluster[i] != result.static_cluster &&
+                                                     result.source_cluster[i] != kOutlierCluster; }),
+                object.end ());  // points an earlier segment's object took
+  if (static_cast<int> (object.size ()) < parameters.min_segment_points)
+    return false;
+  const int seen_through = static_seen + objectSeenThrough (scene, object, T_static);
+  const matching::ScanSegment& segment = scene.views.targetSegments ()[g];
+  if (seen_through < 2)  // freeSpaceRun () must resolve two
+    return false;
+  const int firm = firmlySeenThrough (scene, segment, object, T_static);
+  if (firm == 0)  // the slide must resolve a firm one
+    return false;
+  const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
+  const double coarse_step = 2.0 * parameters.overlap_radius;
+  const ShiftSearch search{scene,
+                           object,
+                           g,
+                           T_static,
+                           axis,
+                           coarse_step,
+                           // two overlap radii: what the sensor resolves on the segment (a
+                           // 1/10-scale car half a metre away slides a few centimetres, a truck
+                           // at 10 m a metre or more)
+                           std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
+                           segmentMedian (scene.target_spacing, segment),
+                           shiftReach (scene, object, segment, T_static, axis)};
+  FreeSpaceRun run;
+  if (!freeSpaceRun (search, seen_through, run) ||
+      !landsAtLeast (search, run, explainedByStatic (scene, object, g, static_target)))
+    return false;
+  const Rigid2d T_moved = search.motion (run.middle ());
+  if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
+    return false;
+  const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
+  addCluster (scene, object, g, T_moved, landed, result);
+  return true;
+}
+
 }  // namespace
 
 int
@@ -513,7 +599,7 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
   checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
   if (!canSeparateFromStaticWorld (source, target, result))
     return 0;
-  FreeSpaceScene scene{views, source, target, parameters, {}, {}, {}, {}};
+  FreeSpaceScene scene{views, source, target, parameters, {}, {}, {}, {}, {}};
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   // The target segments with points the source saw through under the static motion, and how many.
   const std::vector<matching::ScanSegment>& target_segments = views.targetSegments ();
@@ -533,44 +619,15 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
   const std::vector<int> static_target = staticTargets (scene, free, T_static);
   int added = 0;
   for (int g : moved_in) {
-    std::vector<int> object = objectOnSegment (scene, g, free, static_target);
-    object.erase (std::remove_if (object.begin (), object.end (),
-                                  [&] (int i) { return result.source_cluster[i] != result.static_cluster &&
-                                                       result.source_cluster[i] != kOutlierCluster; }),
-                  object.end ());  // points an earlier segment's object took
-    if (static_cast<int> (object.size ()) < parameters.min_segment_points)
+    scene.surfaces = &scene.segments;  // the moved-in segment alone
+    if (separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, result)) {
+      ++added;
       continue;
-    const int seen_through = static_seen_through[g] + objectSeenThrough (scene, object, T_static);
-    const matching::ScanSegment& segment = target_segments[g];
-    if (seen_through < 2)  // freeSpaceRun () must resolve two
+    }
+    if (!scene.occluded.joinsOthers (g))
       continue;
-    const int firm = firmlySeenThrough (scene, segment, object, T_static);
-    if (firm == 0)  // the slide must resolve a firm one
-      continue;
-    const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
-    const double coarse_step = 2.0 * parameters.overlap_radius;
-    const ShiftSearch search{scene,
-                             object,
-                             g,
-                             T_static,
-                             axis,
-                             coarse_step,
-                             // two overlap radii: what the sensor resolves on the segment (a
-                             // 1/10-scale car half a metre away slides a few centimetres, a truck
-                             // at 10 m a metre or more)
-                             std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
-                             segmentMedian (scene.target_spacing, segment),
-                             shiftReach (scene, object, segment, T_static, axis)};
-    FreeSpaceRun run;
-    if (!freeSpaceRun (search, seen_through, run) ||
-        !landsAtLeast (search, run, explainedByStatic (scene, object, g, static_target)))
-      continue;
-    const Rigid2d T_moved = search.motion (run.middle ());
-    if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
-      continue;
-    const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
-    addCluster (scene, object, g, T_moved, landed, result);
-    ++added;
+    scene.surfaces = &scene.occluded;  // with the segments it continues behind occluders
+    added += separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, result);
   }
   if (added > 0)
     numberLargestFirst (result);

@@ -81,6 +81,39 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
 }
 
 std::vector<int>
+occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments, double breakpoint_angle,
+                  double range_noise)
+{
+  std::vector<int> surface (segments.size ());
+  std::vector<double> bearings (static_cast<std::size_t> (points.cols ()));
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+    bearings[i] = std::atan2 (points (1, i), points (0, i));
+  const double step = typicalStep (bearings);
+  for (std::size_t s = 0; s < segments.size (); ++s) {
+    surface[s] = static_cast<int> (s);
+    const int b = segments[s].begin;
+    const double range_b = points.col (b).norm ();
+    double farthest_between = 0.0;  // every point between a and b must be nearer than both
+    for (std::size_t r = s; r-- > 0;) {
+      if (r + 1 < s)
+        for (int i = segments[r + 1].begin; i < segments[r + 1].end; ++i)
+          farthest_between = std::max (farthest_between, points.col (i).norm ());
+      const int a = segments[r].end - 1;
+      const double dphi = bearingStep (bearings[a], bearings[b]);
+      if (farthest_between >= range_b || dphi >= breakpoint_angle)
+        break;  // a point between is not in front of b, or a and b are too far apart in bearing
+      if (r + 1 == s || farthest_between >= points.col (a).norm ())
+        continue;  // nothing between (segmentScan's own breakpoint), or a point between not in front of a
+      if (!isBreakpoint (points.col (a), points.col (b), dphi, step, breakpoint_angle, range_noise)) {
+        surface[s] = surface[r];
+        break;
+      }
+    }
+  }
+  return surface;
+}
+
+std::vector<int>
 segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points)
 {
   std::vector<int> of (static_cast<std::size_t> (points), -1);

@@ -281,6 +281,62 @@ TEST (MatchingSegments, AWallWithOneMissingReturnStaysOneSegment)
              1u);
 }
 
+/** A wall 10 m ahead (x = 10) on bearings −20° … 20°, one degree apart, whose returns on
+ *  −1° … 1° are replaced by points at \a between [m] on those bearings, and whose
+ *  returns from 2° on lie at x = \a far_x instead. */
+Eigen::Matrix2Xd
+wallBehind (double between, double far_x = 10.0)
+{
+  std::vector<Eigen::Vector2d> points;
+  for (int degrees = -20; degrees <= 20; ++degrees) {
+    const double theta = degrees * M_PI / 180.0;
+    const double x = std::abs (degrees) <= 1 ? between * std::cos (theta) : degrees > 1 ? far_x : 10.0;
+    points.emplace_back (x, x * std::tan (theta));
+  }
+  return asColumns (points);
+}
+
+TEST (MatchingSegments, AWallBehindAPedestrianIsOneSurface)
+{
+  // The pedestrian 5 m ahead hides the wall on three beams. The wall's points either
+  // side, at −2° and 2°, are 0.70 m apart, within 4 × 10 sin 1° / sin 9° + 0.03 = 4.49 m
+  // (one step's breakpoint distance per beam, as across missing returns).
+  const m::SegmentMotionParameters parameters;
+  const Eigen::Matrix2Xd scan = wallBehind (5.0);
+  const auto segments =
+      m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::MissingReturns);
+  ASSERT_EQ (segments.size (), 3u);
+  EXPECT_EQ (segments[1].begin, 19);
+  EXPECT_EQ (segments[1].end, 22);
+  EXPECT_EQ (m::occludedSurfaces (scan, segments, parameters.breakpoint_angle, parameters.range_noise),
+             (std::vector<int>{0, 1, 0}));
+}
+
+TEST (MatchingSegments, OnlyANearerOccluderOnOneLineJoinsTwoSegments)
+{
+  const m::SegmentMotionParameters parameters;
+  const auto surfaces = [&] (const Eigen::Matrix2Xd& scan) {
+    const auto segments =
+        m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::MissingReturns);
+    EXPECT_EQ (segments.size (), 3u);
+    return m::occludedSurfaces (scan, segments, parameters.breakpoint_angle, parameters.range_noise);
+  };
+  // Points 15 m away between the two pieces are behind them, not in front: three surfaces.
+  EXPECT_EQ (surfaces (wallBehind (15.0)), (std::vector<int>{0, 1, 2}));
+  // A wall 7 m behind the first from 2° on: its first point is 7.00 m from the first
+  // wall's last, beyond 4.49 m. The pedestrian hides a corner, not one surface.
+  EXPECT_EQ (surfaces (wallBehind (5.0, 17.0)), (std::vector<int>{0, 1, 2}));
+  // Nothing to join in a scan of one segment, or none.
+  const Eigen::Matrix2Xd wall = wallBehind (10.0);
+  EXPECT_EQ (m::occludedSurfaces (wall, m::segmentScan (wall, parameters.breakpoint_angle, parameters.range_noise,
+                                                        m::BeamGaps::MissingReturns),
+                                  parameters.breakpoint_angle, parameters.range_noise),
+             (std::vector<int>{0}));
+  EXPECT_TRUE (m::occludedSurfaces (Eigen::Matrix2Xd (2, 0), {}, parameters.breakpoint_angle,
+                                    parameters.range_noise)
+                   .empty ());
+}
+
 TEST (MatchingSegments, HypothesisFollowsAMovingBox)
 {
   const MovingBoxScene scene = movingBoxScene ();

@@ -322,7 +322,11 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
  *  by the static motion, lie where the source saw through (matching::seesThrough ()),
  *  the candidate object is every static or outlier source point on the source segments
  *  the static motion puts on that target segment (nearest target point on it, within its
- *  overlap radius). Unless some of those points is seen through firmly
+ *  overlap radius); when that object makes no cluster, the same is tried once more on
+ *  the segment's surface, the segment and those it continues behind nearer occluders
+ *  (matching::occludedSurfaces (): a crossing car that a pedestrian in front splits in
+ *  two, its newly seen end one piece, the part the static motion explains the other).
+ *  Unless some of those points is seen through firmly
  *  (matching::seesThroughFirmly (): not only beams a surface's edges dropped), nothing
  *  is searched, and the slide found must leave fewer points seen through firmly.
  *  Its motion slides the static motion along the principal axis of

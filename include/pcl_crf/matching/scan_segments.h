@@ -56,6 +56,27 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
 std::vector<int>
 segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points);
 
+/** \brief Per segment of segmentScan (..., BeamGaps::MissingReturns), the surface it
+ *  belongs to (the index of the surface's first segment): a segment continues an
+ *  earlier one hidden behind an occluder, when every point between the earlier one's
+ *  last point a and its first point b is nearer to the sensor than both, and a and b
+ *  pass the breakpoint test across the occluded beams, each allowing one step's
+ *  distance as a missing return does. A car behind a pedestrian shows as two segments
+ *  with the pedestrian between them, one surface.
+ *  \param[in] points the scan in its own sensor frame, beam order [m]
+ *  \param[in] segments its segments (segmentScan () with the same λ and σ)
+ *  \param[in] breakpoint_angle λ [rad]
+ *  \param[in] range_noise σ [m]
+ *
+ *  \code
+ *  const auto segments = pcl_crf::matching::segmentScan (scan, 0.1745, 0.01, pcl_crf::matching::BeamGaps::MissingReturns);
+ *  const std::vector<int> surface = pcl_crf::matching::occludedSurfaces (scan, segments, 0.1745, 0.01);
+ *  \endcode
+ */
+std::vector<int>
+occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments, double breakpoint_angle,
+                  double range_noise);
+
 /** \brief Which ends of a segment are an object's ends rather than an occlusion
  *  or the border of the scan: the point across the breakpoint lies farther from
  *  the sensor (background behind the object's end).
