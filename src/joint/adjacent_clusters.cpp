@@ -92,8 +92,9 @@ mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   detail::checkResultAgainstSource ("mergeAdjacentClustersThatMoveAlike", source, result);
-  const std::vector<matching::ScanSegment> segments = matching::segmentScan (
-      source, parameters.breakpoint_angle, parameters.range_noise, matching::BeamGaps::MissingReturns);
+  const std::vector<matching::ScanSegment> segments =
+      matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise,
+                             matching::BeamGaps::MissingReturns, parameters.max_missing_returns);
   return mergeAlongSegments (source, segments, parameters, result);
 }
 

@@ -50,7 +50,7 @@ ScanViews::segments (std::optional<std::vector<matching::ScanSegment>>& cache, c
 {
   if (!cache)
     cache = matching::segmentScan (scan, parameters_.breakpoint_angle, parameters_.range_noise,
-                                   matching::BeamGaps::MissingReturns);
+                                   matching::BeamGaps::MissingReturns, parameters_.max_missing_returns);
   return *cache;
 }
 

@@ -54,7 +54,8 @@ public:
   }
 
   /** matching::segmentScan () of each scan with the parameters' breakpoint settings,
-   *  split across missing returns (matching::BeamGaps::MissingReturns): the steps read
+   *  split across missing returns (matching::BeamGaps::MissingReturns, runs of at most
+   *  SegmentMotionParameters::max_missing_returns beams): the steps read
    *  segments as the outlines of what each sensor saw. */
   const std::vector<matching::ScanSegment>&
   sourceSegments () const;

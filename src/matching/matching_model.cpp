@@ -48,6 +48,8 @@ validateParameters (const MatchingParameters& p)
   require (s.min_segment_points >= 1, "min_segment_points must be >= 1");
   require (s.max_displacement >= 0.0 && std::isfinite (s.max_displacement), "max_displacement must be >= 0 m");
   require (s.max_speed >= 0.0 && std::isfinite (s.max_speed), "max_speed must be >= 0 m/s (0: no bound)");
+  require (s.max_missing_returns >= -1 && s.max_missing_returns <= 100000,
+           "max_missing_returns must be in [0, 100000] beams, or -1 for no bound");
   require (s.overlap_radius > 0.0 && std::isfinite (s.overlap_radius), "overlap_radius must be > 0 m");
   require (s.overlap_spacings >= 0.0 && std::isfinite (s.overlap_spacings),
            "overlap_spacings must be >= 0 point spacings (0: overlap_radius everywhere)");

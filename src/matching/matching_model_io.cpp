@@ -43,6 +43,8 @@ readParameters (ModelReader& reader)
   segments.max_displacement = reader.real ("segment_max_displacement", 0.0);
   // absent from models written before it: no speed bound, as they were trained
   segments.max_speed = reader.optionalReal ("segment_max_speed", 0.0, 0.0, 1e6);
+  // absent from models written before it: no bound, as they were trained
+  segments.max_missing_returns = reader.optionalInteger ("segment_max_missing_returns", -1, -1, 100000);
   segments.overlap_radius = reader.real ("segment_overlap_radius", 0.0);
   // absent from models written before it: the metric radius everywhere, as they were trained
   segments.overlap_spacings = reader.optionalReal ("segment_overlap_spacings", 0.0, 0.0, 1e6);
@@ -114,6 +116,7 @@ writeModel (const CrfMatchingModel& model, std::ostream& os)
        << "segment_min_points " << p.candidates.segments.min_segment_points << '\n'
        << "segment_max_displacement " << number (p.candidates.segments.max_displacement) << '\n'
        << "segment_max_speed " << number (p.candidates.segments.max_speed) << '\n'
+       << "segment_max_missing_returns " << p.candidates.segments.max_missing_returns << '\n'
        << "segment_overlap_radius " << number (p.candidates.segments.overlap_radius) << '\n'
        << "segment_overlap_spacings " << number (p.candidates.segments.overlap_spacings) << '\n'
        << "boosting_rounds " << p.boosting_rounds << '\n'

@@ -122,6 +122,16 @@ public:
     return present ? real (key, min, max) : absent;
   }
 
+  /** integer (key, min, max) when the next line is \a key, else \a absent (the line is kept). */
+  int
+  optionalInteger (const std::string& key, int absent, int min, int max)
+  {
+    std::vector<std::string> tokens = nextLine ("'" + key + "' or what follows it");
+    const bool present = tokens.front () == key;
+    pending_ = std::move (tokens);
+    return present ? integer (key, min, max) : absent;
+  }
+
   int
   integer (const std::string& key, int min, int max)
   {

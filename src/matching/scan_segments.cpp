@@ -36,15 +36,18 @@ typicalStep (const std::vector<double>& bearings)
 /** Adaptive breakpoint test between consecutive points p, q, \a dphi apart in bearing
  *  (Borges & Aldon, 2004): ||q − p|| > k r sin Δφ / sin(λ − Δφ) + 3σ. Δφ = dphi and
  *  k = 1, unless the gap spans missing returns (\a step > 0, the sensor's step, and
- *  dphi > 1.5 steps): then Δφ = step and k = dphi / step, one step's distance per beam. */
+ *  dphi > 1.5 steps): then Δφ = step and k = dphi / step, one step's distance per beam,
+ *  and a gap of more than \a max_missing_returns beams (≥ 0) is a breakpoint. */
 bool
 isBreakpoint (const Eigen::Vector2d& p, const Eigen::Vector2d& q, double dphi, double step, double breakpoint_angle,
-              double range_noise)
+              double range_noise, int max_missing_returns = -1)
 {
   if (dphi >= breakpoint_angle)
     return true;
   const double range = std::min (p.norm (), q.norm ());
   const bool missing_returns = step > 0.0 && step < breakpoint_angle && dphi > 1.5 * step;
+  if (missing_returns && max_missing_returns >= 0 && std::lround (dphi / step) - 1 > max_missing_returns)
+    return true;
   const double one_step = missing_returns ? step : dphi;
   const double steps = missing_returns ? dphi / step : 1.0;
   const double threshold =
@@ -62,7 +65,8 @@ isObjectEnd (const Eigen::Matrix2Xd& scan, int end, int across)
 }  // namespace
 
 std::vector<ScanSegment>
-segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise, BeamGaps gaps)
+segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise, BeamGaps gaps,
+             int max_missing_returns)
 {
   std::vector<ScanSegment> segments;
   const int n = static_cast<int> (points.cols ());
@@ -73,7 +77,7 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
   int begin = 0;
   for (int i = 1; i <= n; ++i)
     if (i == n || isBreakpoint (points.col (i - 1), points.col (i), bearingStep (bearings[i - 1], bearings[i]), step,
-                                breakpoint_angle, range_noise)) {
+                                breakpoint_angle, range_noise, max_missing_returns)) {
       segments.push_back ({begin, i});
       begin = i;
     }

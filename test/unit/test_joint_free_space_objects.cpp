@@ -145,13 +145,19 @@ TEST (JointFreeSpaceObjects, ATruckSlidingAlongItselfGetsItsOwnCluster)
   EXPECT_EQ (result.cluster_sizes[truck_cluster], static_cast<int> (std::count (source_truck.begin (), source_truck.end (), true)));
 }
 
-/** A sensor at the origin (beams every 0.5° over [−90°, 90°], 30 m range) facing a car's
- *  4 m side 20 m ahead (x = 20, y from \a car_right to car_right + 4 m), a pedestrian of
- *  0.2 m 10 m ahead (x = 10, y in [−0.6, −0.4] m) and a wall along y = −10 m (x
- *  in [0, 27] m: the farthest return, beyond which a beam without one says nothing);
- *  nothing else returns. Points in beam order; \a is_car marks the car's. */
+/** A piece of surface facing the sensor: x = \a x, y in [y_min, y_max] [m]. */
+struct Board
+{
+  double x, y_min, y_max;
+  bool car;
+};
+
+/** A sensor at the origin (beams every 0.5° over [−90°, 90°], 30 m range) facing the
+ *  boards, with a wall along y = −10 m (x in [0, 27] m: the farthest return, beyond
+ *  which a beam without one says nothing); nothing else returns. Points in beam order;
+ *  \a is_car marks those of the car's boards. */
 Eigen::Matrix2Xd
-carBehindAPedestrian (double car_right, std::vector<bool>& is_car)
+boardsAhead (const std::vector<Board>& boards, std::vector<bool>& is_car)
 {
   std::vector<Eigen::Vector2d> points;
   is_car.clear ();
@@ -160,13 +166,13 @@ carBehindAPedestrian (double car_right, std::vector<bool>& is_car)
     double range = 30.0;
     bool car = false;
     if (s < 0.0 && 10.0 * c / -s <= 27.0)  // the wall
-      range = std::min (range, 10.0 / -s);
-    const double at_pedestrian = 10.0 * s / c, at_car = 20.0 * s / c;
-    if (c > 0.0 && at_pedestrian >= -0.6 && at_pedestrian <= -0.4)
-      range = std::min (range, 10.0 / c);
-    else if (c > 0.0 && at_car >= car_right && at_car <= car_right + 4.0 && 20.0 / c < range) {
-      range = 20.0 / c;
-      car = true;
+      range = 10.0 / -s;
+    for (const Board& board : boards) {
+      const double y = board.x * s / c;
+      if (c > 0.0 && y >= board.y_min && y <= board.y_max && board.x / c < range) {
+        range = board.x / c;
+        car = board.car;
+      }
     }
     if (range < 30.0) {
       points.emplace_back (range * c, range * s);
@@ -177,6 +183,14 @@ carBehindAPedestrian (double car_right, std::vector<bool>& is_car)
   for (std::size_t i = 0; i < points.size (); ++i)
     scan.col (static_cast<Eigen::Index> (i)) = points[i];
   return scan;
+}
+
+/** boardsAhead (): a car's 4 m side 20 m ahead (y from \a car_right to car_right + 4 m)
+ *  behind a pedestrian of 0.2 m 10 m ahead (y in [−0.6, −0.4] m). */
+Eigen::Matrix2Xd
+carBehindAPedestrian (double car_right, std::vector<bool>& is_car)
+{
+  return boardsAhead ({{20.0, car_right, car_right + 4.0, true}, {10.0, -0.6, -0.4, false}}, is_car);
 }
 
 TEST (JointFreeSpaceObjects, ACarSeenInTwoPiecesBehindAPedestrianGetsItsOwnCluster)
@@ -218,6 +232,41 @@ TEST (JointFreeSpaceObjects, ACarSeenInTwoPiecesBehindAPedestrianGetsItsOwnClust
     }
   }
   EXPECT_EQ (matched, 20);  // measured; of 22
+}
+
+TEST (JointFreeSpaceObjects, ACarIsNotOneSurfaceWithAPostTwelveEmptyBeamsAway)
+{
+  // The car crosses 1.5 m to the left (y from −1 m to 0.5 m), towards a 1 m post at
+  // the same distance (y in [6.6, 7.6] m). In the target 12 beams without a return lie
+  // between the car's left end and the post; the bound across missing returns (12 ×
+  // 20 sin 0.5° / sin 9.5° + 0.03 = 12.7 m) lets their 2.1 m through. As one segment,
+  // the car's newly seen left end brings the post into its object, and the post
+  // slides with the car. Split after SegmentMotionParameters::max_missing_returns (10)
+  // beams, the car slides alone.
+  const std::vector<Board> post{{20.0, 6.6, 7.6, false}};
+  std::vector<bool> source_car, target_car;
+  const auto scene = [&] (double car_right, std::vector<bool>& is_car) {
+    std::vector<Board> boards = post;
+    boards.push_back ({20.0, car_right, car_right + 4.0, true});
+    return boardsAhead (boards, is_car);
+  };
+  const Eigen::Matrix2Xd source = scene (-1.0, source_car);
+  const Eigen::Matrix2Xd target = scene (0.5, target_car);
+  JointResult result;
+  const int car_cluster = separatedCluster (source, target, source_car, result);
+  ASSERT_GE (car_cluster, 0);
+  const pcl_crf::Rigid2d& T = result.cluster_motions[car_cluster];
+  EXPECT_NEAR (T.translation ().x (), 0.0, 1e-9);
+  EXPECT_NEAR (T.translation ().y (), 1.5, 0.25);
+  // Any run bridged: the post's points leave the static world with the car.
+  pcl_crf::matching::SegmentMotionParameters bridging;
+  bridging.max_missing_returns = -1;
+  JointResult joined = allStatic (source, target);
+  ASSERT_EQ (separateObjectsInFreeSpace (source, target, bridging, joined), 1);
+  int post_points_moved = 0;
+  for (Eigen::Index i = 0; i < source.cols (); ++i)
+    post_points_moved += !source_car[i] && joined.source_cluster[i] != joined.static_cluster;
+  EXPECT_GT (post_points_moved, 0);
 }
 
 TEST (JointFreeSpaceObjects, AOneTenthScaleCarSlidingAFewCentimetresGetsItsOwnCluster)

@@ -281,6 +281,35 @@ TEST (MatchingSegments, AWallWithOneMissingReturnStaysOneSegment)
              1u);
 }
 
+TEST (MatchingSegments, ARunOfMoreMissingReturnsThanOneSurfaceDropsIsABreakpoint)
+{
+  // The 1081-beam street's case (seed 3003, pair 16): a pedestrian 20 m away on
+  // bearings −1° … 0° (0.25° beams), nothing on the next 33 beams, then a wall 30 m away.
+  // The 10.6 m between them pass the bound across missing returns, 34 × 20 sin 0.25° /
+  // sin 9.75° + 0.03 = 17.5 m, but no surface drops 33 returns in a row.
+  std::vector<Eigen::Vector2d> points;
+  for (int k = -4; k <= 0; ++k)
+    points.emplace_back (20.0 * std::cos (0.25 * k * M_PI / 180.0), 20.0 * std::sin (0.25 * k * M_PI / 180.0));
+  for (int k = 34; k <= 60; ++k)
+    points.emplace_back (30.0 * std::cos (0.25 * k * M_PI / 180.0), 30.0 * std::sin (0.25 * k * M_PI / 180.0));
+  const Eigen::Matrix2Xd scan = asColumns (points);
+  const m::SegmentMotionParameters parameters;
+  ASSERT_EQ (parameters.max_missing_returns, 10);
+  const auto segments = [&] (int max_missing_returns) {
+    return m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::MissingReturns,
+                           max_missing_returns)
+        .size ();
+  };
+  EXPECT_EQ (segments (-1), 1u);  // no bound
+  EXPECT_EQ (segments (parameters.max_missing_returns), 2u);
+  EXPECT_EQ (segments (33), 1u);
+  EXPECT_EQ (segments (32), 2u);
+  // Measured gaps know no missing returns.
+  EXPECT_EQ (m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::Measured, 0)
+                 .size (),
+             1u);
+}
+
 /** A wall 10 m ahead (x = 10) on bearings −20° … 20°, one degree apart, whose returns on
  *  −1° … 1° are replaced by points at \a between [m] on those bearings, and whose
  *  returns from 2° on lie at x = \a far_x instead. */

@@ -328,6 +328,21 @@ TEST_F (MatchingModelTest, RecordsTheTopSpeedOfAnObject)
   EXPECT_THROW (m::validateParameters (parameters), std::invalid_argument);
 }
 
+TEST_F (MatchingModelTest, RecordsTheLongestRunOfMissingReturnsOnOneSurface)
+{
+  EXPECT_EQ (model_->parameters.candidates.segments.max_missing_returns, 10);
+  // Files written before the field bridged any run, and still do; a run is whole beams.
+  expectOptionalLine (*model_, "segment_max_missing_returns 10\n", "segment_max_missing_returns 2.5\n", -1.0,
+                      [] (const m::MatchingParameters& p) {
+                        return static_cast<double> (p.candidates.segments.max_missing_returns);
+                      });
+  m::MatchingParameters parameters;
+  parameters.candidates.segments.max_missing_returns = -2;
+  EXPECT_THROW (m::validateParameters (parameters), std::invalid_argument);
+  parameters.candidates.segments.max_missing_returns = -1;
+  EXPECT_NO_THROW (m::validateParameters (parameters));
+}
+
 TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)
 {
   // The model learned from 0.5° scans; on 0.25° scans it matches every other beam and

@@ -42,6 +42,9 @@ enum class BeamGaps
  *  \param[in] breakpoint_angle λ, the worst incidence angle on one surface [rad]
  *  \param[in] range_noise σ, the laser's range noise [m]
  *  \param[in] gaps how a gap wider than the sensor's step is bridged
+ *  \param[in] max_missing_returns with BeamGaps::MissingReturns, the most beams
+ *  without a return that a gap within one segment may span (a longer run is a
+ *  breakpoint); −1: any (SegmentMotionParameters::max_missing_returns)
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (pair.source, 0.1745, 0.01);
@@ -49,7 +52,7 @@ enum class BeamGaps
  */
 std::vector<ScanSegment>
 segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise,
-             BeamGaps gaps = BeamGaps::Measured);
+             BeamGaps gaps = BeamGaps::Measured, int max_missing_returns = -1);
 
 /** \brief The index into \a segments of every one of \a points points (−1 for a point
  *  in none of them). */
