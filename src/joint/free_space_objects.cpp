@@ -227,27 +227,37 @@ principalAxis (const Eigen::Matrix2Xd& points)
   return solver.eigenvectors ().col (1);  // eigenvalues increase
 }
 
-/** The axis the object slides along: the principal axis of the points on the surface
- *  of target segment \a segment the static motion puts the object's points on (\a static_target,
- *  staticTargets (); the whole segment's when fewer than two), so that the few points
- *  of another surface the segment runs on into (a wall behind a car's end, within the
- *  breakpoint distance) do not tilt it. */
+/** The axis the object slides along: the principal axis of the points of target
+ *  segment \a segment's surface the static motion puts the object's points on
+ *  (\a static_target, staticTargets ()), with \a newly_seen also of the segment's
+ *  points the source saw through under it (the newly seen part of the same surface, in
+ *  front of what the source saw); the whole segment's when fewer than two. The few
+ *  points of another surface the segment runs on into (a wall behind a car's end,
+ *  within the breakpoint distance) are neither and do not tilt it. A car beside the
+ *  sensor that the static motion moves mostly out of the target's view overlaps its
+ *  side in a few points, whose axis the range noise tilts by degrees: along it, a
+ *  slide of metres leaves the side; the newly seen metres steady it. */
 Eigen::Vector2d
 slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
-           const std::vector<int>& static_target)
+           const std::vector<int>& static_target, const Rigid2d& T_static, bool newly_seen)
 {
-  std::vector<int> overlapped;
+  std::vector<int> along;
   for (int i : object)
     if (onSurfaceOf (scene, static_target[i], segment))
-      overlapped.push_back (static_target[i]);
-  std::sort (overlapped.begin (), overlapped.end ());
-  overlapped.erase (std::unique (overlapped.begin (), overlapped.end ()), overlapped.end ());
+      along.push_back (static_target[i]);
   const matching::ScanSegment& whole = scene.views.targetSegments ()[segment];
-  if (overlapped.size () < 2)
+  const Rigid2d T_inverse = T_static.inverse ();
+  const detail::SensorView& seen = scene.views.sourceView ();
+  for (int j = whole.begin; newly_seen && j < whole.end; ++j)
+    if (matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint))
+      along.push_back (j);
+  std::sort (along.begin (), along.end ());
+  along.erase (std::unique (along.begin (), along.end ()), along.end ());
+  if (along.size () < 2)
     return principalAxis (scene.target.middleCols (whole.begin, whole.size ()));
-  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (overlapped.size ()));
-  for (std::size_t k = 0; k < overlapped.size (); ++k)
-    points.col (static_cast<Eigen::Index> (k)) = scene.target.col (overlapped[k]);
+  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (along.size ()));
+  for (std::size_t k = 0; k < along.size (); ++k)
+    points.col (static_cast<Eigen::Index> (k)) = scene.target.col (along[k]);
   return principalAxis (points);
 }
 
@@ -562,30 +572,54 @@ separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, co
   const int firm = firmlySeenThrough (scene, segment, object, T_static);
   if (firm == 0)  // the slide must resolve a firm one
     return false;
-  const Eigen::Vector2d axis = slideAxis (scene, object, g, static_target);
+  // The slide's axis: that of the overlapped points, and that of those and the newly
+  // seen part (slideAxis ()); the run leaving fewer points seen through is tried first.
+  struct Candidate
+  {
+    Eigen::Vector2d axis;
+    FreeSpaceRun run;
+    int fewest;
+  };
+  std::vector<Candidate> candidates;
   const double coarse_step = 2.0 * parameters.overlap_radius;
-  const ShiftSearch search{scene,
-                           object,
-                           g,
-                           T_static,
-                           axis,
-                           coarse_step,
-                           // two overlap radii: what the sensor resolves on the segment (a
-                           // 1/10-scale car half a metre away slides a few centimetres, a truck
-                           // at 10 m a metre or more)
-                           std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
-                           segmentMedian (scene.target_spacing, segment),
-                           shiftReach (scene, object, segment, T_static, axis)};
-  FreeSpaceRun run;
-  if (!freeSpaceRun (search, seen_through, run) ||
-      !landsAtLeast (search, run, explainedByStatic (scene, object, g, static_target)))
-    return false;
-  const Rigid2d T_moved = search.motion (run.middle ());
-  if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
-    return false;
-  const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
-  addCluster (scene, object, g, T_moved, landed, result);
-  return true;
+  const auto searchAlong = [&] (const Eigen::Vector2d& axis) {
+    return ShiftSearch{scene,
+                       object,
+                       g,
+                       T_static,
+                       axis,
+                       coarse_step,
+                       // two overlap radii: what the sensor resolves on the segment (a
+                       // 1/10-scale car half a metre away slides a few centimetres, a truck
+                       // at 10 m a metre or more)
+                       std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
+                       segmentMedian (scene.target_spacing, segment),
+                       shiftReach (scene, object, segment, T_static, axis)};
+  };
+  std::vector<Eigen::Vector2d> axes{slideAxis (scene, object, g, static_target, T_static, false)};
+  const Eigen::Vector2d with_newly_seen = slideAxis (scene, object, g, static_target, T_static, true);
+  if (std::abs (with_newly_seen.dot (axes.front ())) < 1.0 - 1e-12)
+    axes.push_back (with_newly_seen);
+  for (const Eigen::Vector2d& axis : axes) {
+    const ShiftSearch search = searchAlong (axis);
+    FreeSpaceRun run;
+    if (freeSpaceRun (search, seen_through, run))
+      candidates.push_back ({axis, run, search.seenThrough (run.middle ())});
+  }
+  std::stable_sort (candidates.begin (), candidates.end (),
+                    [] (const Candidate& a, const Candidate& b) { return a.fewest < b.fewest; });
+  for (const Candidate& candidate : candidates) {
+    const ShiftSearch search = searchAlong (candidate.axis);
+    if (!landsAtLeast (search, candidate.run, explainedByStatic (scene, object, g, static_target)))
+      continue;
+    const Rigid2d T_moved = search.motion (candidate.run.middle ());
+    if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
+      continue;
+    const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
+    addCluster (scene, object, g, T_moved, landed, result);
+    return true;
+  }
+  return false;
 }
 
 }  // namespace

@@ -331,7 +331,10 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
  *  is searched, and the slide found must leave fewer points seen through firmly.
  *  Its motion slides the static motion along the principal axis of
  *  the target points the static motion puts the object on (not of the points of
- *  another surface the segment runs on into): on a grid of 2 overlap_radius steps
+ *  another surface the segment runs on into) and, when it differs, along that of those
+ *  and the segment's points the source saw through (the newly seen side, which steadies
+ *  the axis of a long slide that a few overlapped points would tilt); the axis whose run
+ *  leaves fewer points seen through is tried first. Along each: on a grid of 2 overlap_radius steps
  *  within ±max_displacement (or less, where the object and the segment no longer
  *  overlap along the axis), then on a grid of the segment's own two overlap radii
  *  (overlapRadius () of its point spacing) around the best of those, the run of shifts
