@@ -78,6 +78,15 @@ public:
   double
   getScanInterval () const { return odometry_.interval; }
 
+  /** \brief The longest run of beams without a return that one surface may have
+   *  dropped (SegmentMotionParameters::max_missing_returns; the shipped model's 10):
+   *  raise it for a laser that drops long runs on dark surfaces; −1: any run. A value
+   *  below −1 makes align() fail with an error naming it. */
+  void
+  setMaxMissingReturns (int beams) { model_.matcher.parameters.candidates.segments.max_missing_returns = beams; }
+  int
+  getMaxMissingReturns () const { return model_.matcher.parameters.candidates.segments.max_missing_returns; }
+
   /** \brief Covariance of align()'s guess when no odometry is set; default diag(0.25 m², 0.25 m², 0.05 rad²). */
   void
   setGuessCovariance (const Eigen::Matrix3d& covariance) { guess_covariance_ = covariance; }

@@ -347,6 +347,7 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   if (!model.isTrained ())
     fail ("the model is not trained (train or load one first)");
   validateParameters (parameters);
+  matching::validateParameters (model.matcher.parameters);
   if (source.cols () == 0 || target.cols () == 0)
     fail ("the source and target scans must not be empty");
   if (!source.allFinite () || !target.allFinite ())

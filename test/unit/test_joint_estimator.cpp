@@ -892,6 +892,11 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   estimator.align (aligned);  // a NaN interval
   EXPECT_FALSE (estimator.hasConverged ());
   estimator.setScanInterval (0.3);
+  EXPECT_EQ (estimator.getMaxMissingReturns (), 10);
+  estimator.setMaxMissingReturns (-2);
+  estimator.align (aligned);  // a nonsense bound on dropped returns
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setMaxMissingReturns (10);
   Eigen::Matrix4f nan_guess = Eigen::Matrix4f::Identity ();
   nan_guess (1, 3) = std::numeric_limits<float>::quiet_NaN ();
   estimator.align (aligned, nan_guess);  // a NaN guess, reported
