@@ -116,20 +116,14 @@ public:
   double
   optionalReal (const std::string& key, double absent, double min, double max)
   {
-    std::vector<std::string> tokens = nextLine ("'" + key + "' or what follows it");
-    const bool present = tokens.front () == key;
-    pending_ = std::move (tokens);
-    return present ? real (key, min, max) : absent;
+    return nextLineIs (key) ? real (key, min, max) : absent;
   }
 
-  /** integer (key, min, max) when the next line is \a key, else \a absent (the line is kept). */
+  /** optionalReal () for an integer (key, min, max). */
   int
   optionalInteger (const std::string& key, int absent, int min, int max)
   {
-    std::vector<std::string> tokens = nextLine ("'" + key + "' or what follows it");
-    const bool present = tokens.front () == key;
-    pending_ = std::move (tokens);
-    return present ? integer (key, min, max) : absent;
+    return nextLineIs (key) ? integer (key, min, max) : absent;
   }
 
   int
@@ -173,6 +167,14 @@ public:
   }
 
 private:
+  /** Whether the next meaningful line starts with \a key; the line is kept for the next read. */
+  bool
+  nextLineIs (const std::string& key)
+  {
+    pending_ = nextLine ("'" + key + "' or what follows it");
+    return pending_.front () == key;
+  }
+
   /** Reads the stump lines announced by "stumps N" into block. */
   void
   appendStumpLines (const std::string& key, const std::string& count_line, std::string& block)
@@ -195,7 +197,7 @@ private:
   std::istream& is_;
   std::string name_;
   int line_number_ = 0;
-  std::vector<std::string> pending_;  // a line read ahead by optionalReal
+  std::vector<std::string> pending_;  // a line read ahead by nextLineIs
 };
 
 

@@ -1,5 +1,7 @@
 #include <pcl_crf/joint/joint_estimation.h>
 
+#include "synthetic_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,10 +47,7 @@ street (double truck_rear, std::vector<bool>& is_truck, double scale = 1.0, doub
       }
     }
   }
-  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
-  for (std::size_t i = 0; i < points.size (); ++i)
-    scan.col (static_cast<Eigen::Index> (i)) = points[i];
-  return scan;
+  return pcl_crf::test::asColumns (points);
 }
 
 /** Every source point in the static world (identity motion), matched to its nearest
@@ -180,10 +179,7 @@ boardsAhead (const std::vector<Board>& boards, std::vector<bool>& is_car)
       is_car.push_back (car);
     }
   }
-  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
-  for (std::size_t i = 0; i < points.size (); ++i)
-    scan.col (static_cast<Eigen::Index> (i)) = points[i];
-  return scan;
+  return pcl_crf::test::asColumns (points);
 }
 
 /** boardsAhead (): a car's 4 m side 20 m ahead (y from \a car_right to car_right + 4 m)
@@ -298,10 +294,7 @@ besideACar (double ego_x, double car_front, unsigned seed, std::vector<bool>& is
       is_car.push_back (car);
     }
   }
-  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (points.size ()));
-  for (std::size_t i = 0; i < points.size (); ++i)
-    scan.col (static_cast<Eigen::Index> (i)) = points[i];
-  return scan;
+  return pcl_crf::test::asColumns (points);
 }
 
 TEST (JointFreeSpaceObjects, ALongSlideIsSoughtAlongTheNewlySeenSideToo)
