@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -68,6 +70,9 @@ std::vector<ScanSegment>
 segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise, BeamGaps gaps,
              int max_missing_returns)
 {
+  if (max_missing_returns < -1)
+    throw std::invalid_argument ("[pcl_crf::matching::segmentScan] max_missing_returns must be >= 0 beams, or -1 for "
+                                 "any run; got " + std::to_string (max_missing_returns));
   std::vector<ScanSegment> segments;
   const int n = static_cast<int> (points.cols ());
   std::vector<double> bearings (static_cast<std::size_t> (n));
@@ -88,6 +93,15 @@ std::vector<int>
 occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments, double breakpoint_angle,
                   double range_noise)
 {
+  int previous_end = 0;
+  for (std::size_t s = 0; s < segments.size (); ++s) {
+    if (segments[s].begin < previous_end || segments[s].end <= segments[s].begin || segments[s].end > points.cols ())
+      throw std::invalid_argument ("[pcl_crf::matching::occludedSurfaces] segment " + std::to_string (s) + " [" +
+                                   std::to_string (segments[s].begin) + ", " + std::to_string (segments[s].end) +
+                                   ") is not a run of the scan's " + std::to_string (points.cols ()) +
+                                   " points after the segment before it");
+    previous_end = segments[s].end;
+  }
   std::vector<int> surface (segments.size ());
   std::vector<double> bearings (static_cast<std::size_t> (points.cols ()));
   for (Eigen::Index i = 0; i < points.cols (); ++i)

@@ -20,6 +20,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
@@ -304,6 +306,7 @@ TEST (MatchingSegments, ARunOfMoreMissingReturnsThanOneSurfaceDropsIsABreakpoint
   EXPECT_EQ (segments (parameters.max_missing_returns), 2u);
   EXPECT_EQ (segments (33), 1u);
   EXPECT_EQ (segments (32), 2u);
+  EXPECT_THROW (segments (-2), std::invalid_argument);
   // Measured gaps know no missing returns.
   EXPECT_EQ (m::segmentScan (scan, parameters.breakpoint_angle, parameters.range_noise, m::BeamGaps::Measured, 0)
                  .size (),
@@ -364,6 +367,20 @@ TEST (MatchingSegments, OnlyANearerOccluderOnOneLineJoinsTwoSegments)
   EXPECT_TRUE (m::occludedSurfaces (Eigen::Matrix2Xd (2, 0), {}, parameters.breakpoint_angle,
                                     parameters.range_noise)
                    .empty ());
+  // Segments that are not runs of this scan are named, not read past the scan's end.
+  const auto rejects = [&] (const std::vector<m::ScanSegment>& segments) {
+    try {
+      m::occludedSurfaces (wall, segments, parameters.breakpoint_angle, parameters.range_noise);
+    }
+    catch (const std::invalid_argument& error) {
+      return std::string (error.what ()).find ("segment ") != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE (rejects ({{0, 42}}));           // 41 points
+  EXPECT_TRUE (rejects ({{0, 20}, {10, 41}}));  // overlapping
+  EXPECT_TRUE (rejects ({{5, 5}}));            // empty
+  EXPECT_FALSE (rejects ({{0, 20}, {20, 41}}));
 }
 
 TEST (MatchingSegments, HypothesisFollowsAMovingBox)

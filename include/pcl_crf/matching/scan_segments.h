@@ -45,6 +45,7 @@ enum class BeamGaps
  *  \param[in] max_missing_returns with BeamGaps::MissingReturns, the most beams
  *  without a return that a gap within one segment may span (a longer run is a
  *  breakpoint); −1: any (SegmentMotionParameters::max_missing_returns)
+ *  \throws std::invalid_argument for a max_missing_returns below −1
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (pair.source, 0.1745, 0.01);
@@ -70,6 +71,7 @@ segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index point
  *  \param[in] segments its segments (segmentScan () with the same λ and σ)
  *  \param[in] breakpoint_angle λ [rad]
  *  \param[in] range_noise σ [m]
+ *  \throws std::invalid_argument when the segments are not consecutive runs of the scan's points
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (scan, 0.1745, 0.01, pcl_crf::matching::BeamGaps::MissingReturns);
