@@ -227,38 +227,53 @@ principalAxis (const Eigen::Matrix2Xd& points)
   return solver.eigenvectors ().col (1);  // eigenvalues increase
 }
 
-/** The axis the object slides along: the principal axis of the points of target
- *  segment \a segment's surface the static motion puts the object's points on
- *  (\a static_target, staticTargets ()), with \a newly_seen also of the segment's
- *  points the source saw through under it (the newly seen part of the same surface, in
- *  front of what the source saw); the whole segment's when fewer than two. The few
- *  points of another surface the segment runs on into (a wall behind a car's end,
- *  within the breakpoint distance) are neither and do not tilt it. A car beside the
- *  sensor that the static motion moves mostly out of the target's view overlaps its
- *  side in a few points, whose axis the range noise tilts by degrees: along it, a
- *  slide of metres leaves the side; the newly seen metres steady it. */
+/** The principal axis of target points \a points (sorted, unique), or of the whole
+ *  segment \a whole when fewer than two. */
 Eigen::Vector2d
-slideAxis (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
-           const std::vector<int>& static_target, const Rigid2d& T_static, bool newly_seen)
+axisOfTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const matching::ScanSegment& whole)
 {
+  if (points.size () < 2)
+    return principalAxis (scene.target.middleCols (whole.begin, whole.size ()));
+  Eigen::Matrix2Xd columns (2, static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t k = 0; k < points.size (); ++k)
+    columns.col (static_cast<Eigen::Index> (k)) = scene.target.col (points[k]);
+  return principalAxis (columns);
+}
+
+/** The axes the object slides along. First the principal axis of the points of target
+ *  segment \a segment's surface the static motion puts the object's points on
+ *  (\a static_target, staticTargets ()); then, when it differs, that of those and of the
+ *  segment's points the source saw through under the static motion (the newly seen part
+ *  of the same surface, in front of what the source saw); the whole segment's when
+ *  fewer than two. The few points of another surface the segment runs on into (a wall
+ *  behind a car's end, within the breakpoint distance) are neither and do not tilt
+ *  them. A car beside the sensor that the static motion moves mostly out of the
+ *  target's view overlaps its side in a few points, whose axis the range noise tilts by
+ *  degrees: along it, a slide of metres leaves the side; the newly seen metres steady
+ *  it. */
+std::vector<Eigen::Vector2d>
+slideAxes (const FreeSpaceScene& scene, const std::vector<int>& object, int segment,
+           const std::vector<int>& static_target, const Rigid2d& T_static)
+{
+  const matching::ScanSegment& whole = scene.views.targetSegments ()[segment];
   std::vector<int> along;
   for (int i : object)
     if (onSurfaceOf (scene, static_target[i], segment))
       along.push_back (static_target[i]);
-  const matching::ScanSegment& whole = scene.views.targetSegments ()[segment];
+  std::sort (along.begin (), along.end ());
+  along.erase (std::unique (along.begin (), along.end ()), along.end ());
+  std::vector<Eigen::Vector2d> axes{axisOfTargetPoints (scene, along, whole)};
   const Rigid2d T_inverse = T_static.inverse ();
   const detail::SensorView& seen = scene.views.sourceView ();
-  for (int j = whole.begin; newly_seen && j < whole.end; ++j)
+  for (int j = whole.begin; j < whole.end; ++j)
     if (matching::seesThrough (seen.profile, T_inverse * scene.target.col (j), seen.breakpoint))
       along.push_back (j);
   std::sort (along.begin (), along.end ());
   along.erase (std::unique (along.begin (), along.end ()), along.end ());
-  if (along.size () < 2)
-    return principalAxis (scene.target.middleCols (whole.begin, whole.size ()));
-  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (along.size ()));
-  for (std::size_t k = 0; k < along.size (); ++k)
-    points.col (static_cast<Eigen::Index> (k)) = scene.target.col (along[k]);
-  return principalAxis (points);
+  const Eigen::Vector2d with_newly_seen = axisOfTargetPoints (scene, along, whole);
+  if (std::abs (with_newly_seen.dot (axes.front ())) < 1.0 - 1e-12)
+    axes.push_back (with_newly_seen);
+  return axes;
 }
 
 /** The object's motions searched: T_static slid along the target segment's axis
@@ -572,51 +587,46 @@ separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, co
   const int firm = firmlySeenThrough (scene, segment, object, T_static);
   if (firm == 0)  // the slide must resolve a firm one
     return false;
-  // The slide's axis: that of the overlapped points, and that of those and the newly
-  // seen part (slideAxis ()); the run leaving fewer points seen through is tried first.
+  // The slide is sought along each of slideAxes (); the run leaving fewer points seen
+  // through is tried first.
   struct Candidate
   {
-    Eigen::Vector2d axis;
+    ShiftSearch search;
     FreeSpaceRun run;
     int fewest;
   };
   std::vector<Candidate> candidates;
   const double coarse_step = 2.0 * parameters.overlap_radius;
-  const auto searchAlong = [&] (const Eigen::Vector2d& axis) {
-    return ShiftSearch{scene,
-                       object,
-                       g,
-                       T_static,
-                       axis,
-                       coarse_step,
-                       // two overlap radii: what the sensor resolves on the segment (a
-                       // 1/10-scale car half a metre away slides a few centimetres, a truck
-                       // at 10 m a metre or more)
-                       std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
-                       segmentMedian (scene.target_spacing, segment),
-                       shiftReach (scene, object, segment, T_static, axis)};
-  };
-  std::vector<Eigen::Vector2d> axes{slideAxis (scene, object, g, static_target, T_static, false)};
-  const Eigen::Vector2d with_newly_seen = slideAxis (scene, object, g, static_target, T_static, true);
-  if (std::abs (with_newly_seen.dot (axes.front ())) < 1.0 - 1e-12)
-    axes.push_back (with_newly_seen);
-  for (const Eigen::Vector2d& axis : axes) {
-    const ShiftSearch search = searchAlong (axis);
+  for (const Eigen::Vector2d& axis : slideAxes (scene, object, g, static_target, T_static)) {
+    const ShiftSearch search{scene,
+                             object,
+                             g,
+                             T_static,
+                             axis,
+                             coarse_step,
+                             // two overlap radii: what the sensor resolves on the segment (a
+                             // 1/10-scale car half a metre away slides a few centimetres, a truck
+                             // at 10 m a metre or more)
+                             std::min (2.0 * segmentMedian (scene.target_radius, segment), coarse_step),
+                             segmentMedian (scene.target_spacing, segment),
+                             shiftReach (scene, object, segment, T_static, axis)};
     FreeSpaceRun run;
     if (freeSpaceRun (search, seen_through, run))
-      candidates.push_back ({axis, run, search.seenThrough (run.middle ())});
+      candidates.push_back ({search, run, search.seenThrough (run.middle ())});
   }
-  std::stable_sort (candidates.begin (), candidates.end (),
-                    [] (const Candidate& a, const Candidate& b) { return a.fewest < b.fewest; });
-  for (const Candidate& candidate : candidates) {
-    const ShiftSearch search = searchAlong (candidate.axis);
-    if (!landsAtLeast (search, candidate.run, explainedByStatic (scene, object, g, static_target)))
+  std::vector<std::size_t> order (candidates.size ());
+  std::iota (order.begin (), order.end (), 0);
+  std::stable_sort (order.begin (), order.end (),
+                    [&] (std::size_t a, std::size_t b) { return candidates[a].fewest < candidates[b].fewest; });
+  const int explained = explainedByStatic (scene, object, g, static_target);
+  for (const std::size_t k : order) {
+    const Candidate& candidate = candidates[k];
+    if (!landsAtLeast (candidate.search, candidate.run, explained))
       continue;
-    const Rigid2d T_moved = search.motion (candidate.run.middle ());
+    const Rigid2d T_moved = candidate.search.motion (candidate.run.middle ());
     if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
       continue;
-    const std::vector<int> landed = landedTargetPoints (scene, object, T_moved);
-    addCluster (scene, object, g, T_moved, landed, result);
+    addCluster (scene, object, g, T_moved, landedTargetPoints (scene, object, T_moved), result);
     return true;
   }
   return false;

@@ -20,6 +20,16 @@ bearingStep (double a, double b)
   return d > M_PI ? 2.0 * M_PI - d : d;
 }
 
+/** The bearing atan2 (y, x) of every point. */
+std::vector<double>
+bearingsOf (const Eigen::Matrix2Xd& points)
+{
+  std::vector<double> bearings (static_cast<std::size_t> (points.cols ()));
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+    bearings[i] = std::atan2 (points (1, i), points (0, i));
+  return bearings;
+}
+
 /** The sensor's angular step as the scan shows it: the median bearing step between
  *  consecutive points (0 with fewer than two). */
 double
@@ -75,9 +85,7 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
                                  "any run; got " + std::to_string (max_missing_returns));
   std::vector<ScanSegment> segments;
   const int n = static_cast<int> (points.cols ());
-  std::vector<double> bearings (static_cast<std::size_t> (n));
-  for (int i = 0; i < n; ++i)
-    bearings[i] = std::atan2 (points (1, i), points (0, i));
+  const std::vector<double> bearings = bearingsOf (points);
   const double step = gaps == BeamGaps::MissingReturns ? typicalStep (bearings) : 0.0;
   int begin = 0;
   for (int i = 1; i <= n; ++i)
@@ -103,9 +111,7 @@ occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>
     previous_end = segments[s].end;
   }
   std::vector<int> surface (segments.size ());
-  std::vector<double> bearings (static_cast<std::size_t> (points.cols ()));
-  for (Eigen::Index i = 0; i < points.cols (); ++i)
-    bearings[i] = std::atan2 (points (1, i), points (0, i));
+  const std::vector<double> bearings = bearingsOf (points);
   const double step = typicalStep (bearings);
   for (std::size_t s = 0; s < segments.size (); ++s) {
     surface[s] = static_cast<int> (s);
