@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace pcl_crf {
 namespace joint {
@@ -78,6 +79,34 @@ grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
     grazed[k] = scale > 0.0 && std::abs (along.x () * beam.y () - along.y () * beam.x ()) < least_sine * scale;
   }
   return grazed;
+}
+
+TargetPlacement
+placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views)
+{
+  TargetPlacement p{std::move (points), {}, {}, {}, {}};
+  p.nearest = views.targetPoints ().search (p.points, 1);
+  const SensorView& seen = views.targetView ();
+  const std::vector<bool> grazed = grazedPoints (p.points, views.parameters ().breakpoint_angle);
+  for (Eigen::Index k = 0; k < p.points.cols (); ++k) {
+    const Eigen::Vector2d point = p.points.col (k);
+    p.in_view.push_back (!grazed[k] && matching::inFieldOfView (seen.profile, point));
+    p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
+    p.seen_through.push_back (matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint));
+  }
+  return p;
+}
+
+std::vector<double>
+squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
+                     const matching::SegmentMotionParameters& parameters)
+{
+  std::vector<double> radii;
+  for (int i = segment.begin; i < segment.end; ++i) {
+    const double r = matching::overlapRadius (parameters, matching::pointSpacing (source, i, segment.begin, segment.end));
+    radii.push_back (r * r);
+  }
+  return radii;
 }
 
 }  // namespace detail

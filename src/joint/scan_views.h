@@ -98,6 +98,34 @@ private:
 std::vector<bool>
 grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle);
 
+/** What the target scan says of points placed in its frame. */
+struct TargetPlacement
+{
+  /** the points [m, target frame]. */
+  Eigen::Matrix2Xd points;
+  /** the nearest target point of each. */
+  KnnIndex::Result nearest;
+  /** per point: in the target's field of view and not grazed (grazedPoints ()), so that
+   *  the target's beams tell whether it is there. */
+  std::vector<bool> in_view;
+  /** per point: a target point within its overlap radius. */
+  std::vector<bool> explained;
+  /** per point: the target saw through it to a return farther away. */
+  std::vector<bool> seen_through;
+};
+
+/** \a points (consecutive points of one surface, in the segment's order, placed in the
+ *  target frame) as the target sees them; \a radii_squared their squared overlap
+ *  radii (squaredOverlapRadii ()). One batched nearest-point query. */
+TargetPlacement
+placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views);
+
+/** The squared overlap radius (matching::overlapRadius () of its spacing on the segment)
+ *  of every source point of \a segment. */
+std::vector<double>
+squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
+                     const matching::SegmentMotionParameters& parameters);
+
 /** The free-space steps of joint_estimation.h on shared views (estimateJoint runs them
  *  in turn on one pair); the public functions build their own. */
 int

@@ -19,71 +19,7 @@ namespace joint {
 
 namespace {
 
-/** What the target scan says of points in its frame: explained (a target point within
- *  their overlap radius) or seen through (to a return farther away), or neither. */
-class TargetView
-{
-public:
-  explicit TargetView (const detail::ScanViews& views) : views_ (views) {}
-
-  bool
-  inView (const Eigen::Vector2d& point) const
-  {
-    return matching::inFieldOfView (views_.targetView ().profile, point);
-  }
-
-  bool
-  seesThrough (const Eigen::Vector2d& point) const
-  {
-    const detail::SensorView& seen = views_.targetView ();
-    return matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint);
-  }
-
-  /** The nearest target point of every column of \a points (one batched query). */
-  KnnIndex::Result
-  nearest (const Eigen::Matrix2Xd& points) const
-  {
-    return views_.targetPoints ().search (points, 1);
-  }
-
-  const Eigen::Matrix2Xd&
-  target () const
-  {
-    return views_.target ();
-  }
-
-  const std::vector<matching::ScanSegment>&
-  segments () const
-  {
-    return views_.targetSegments ();
-  }
-
-private:
-  const detail::ScanViews& views_;
-};
-
-/** What the target says of each point of a segment placed by one motion. */
-struct Placement
-{
-  Eigen::Matrix2Xd points;  // target frame
-  KnnIndex::Result nearest;
-  std::vector<bool> in_view, explained, seen_through;  // in_view: in the field of view and not grazed
-};
-
-Placement
-place (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const TargetView& view,
-       double breakpoint_angle)
-{
-  Placement p{std::move (points), {}, {}, {}, {}};
-  p.nearest = view.nearest (p.points);
-  const std::vector<bool> grazed = detail::grazedPoints (p.points, breakpoint_angle);
-  for (Eigen::Index k = 0; k < p.points.cols (); ++k) {
-    p.in_view.push_back (!grazed[k] && view.inView (p.points.col (k)));
-    p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
-    p.seen_through.push_back (view.seesThrough (p.points.col (k)));
-  }
-  return p;
-}
+using detail::TargetPlacement;
 
 /** How a shifted placement fares against the static one on the points both keep in
  *  the target's field of view (a point leaving it says nothing for or against). */
@@ -94,7 +30,7 @@ struct Comparison
   int static_explained = 0;
   int static_seen_through = 0;
 
-  Comparison (const Placement& at_static, const Placement& shifted)
+  Comparison (const TargetPlacement& at_static, const TargetPlacement& shifted)
   {
     for (std::size_t k = 0; k < at_static.in_view.size (); ++k) {
       if (!at_static.in_view[k] || !shifted.in_view[k])
@@ -131,19 +67,6 @@ outsideMovingClusters (const matching::ScanSegment& segment, const JointResult& 
   return true;
 }
 
-/** The squared overlap radius of every point of \a segment. */
-std::vector<double>
-squaredRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
-              const matching::SegmentMotionParameters& parameters)
-{
-  std::vector<double> radii;
-  for (int i = segment.begin; i < segment.end; ++i) {
-    const double r = matching::overlapRadius (parameters, matching::pointSpacing (source, i, segment.begin, segment.end));
-    radii.push_back (r * r);
-  }
-  return radii;
-}
-
 /** The best qualifying end-alignment shift of a segment: its gain (0 when none
  *  qualifies, or when the segment's shape does not tell where it went), the shift and
  *  the placement it gives. */
@@ -151,7 +74,7 @@ struct Slide
 {
   int gain = 0;
   Eigen::Vector2d shift = Eigen::Vector2d::Zero ();
-  Placement placement;
+  TargetPlacement placement;
 };
 
 /** Whether another qualifying shift, farther than \a radius from the best one, explains
@@ -168,18 +91,20 @@ placedAmbiguously (const Slide& best, const std::vector<std::pair<int, Eigen::Ve
 }
 
 Slide
-bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment, const Eigen::Matrix2Xd& at_static,
-           const matching::SegmentMotionParameters& parameters, const TargetView& view)
+bestSlide (const matching::ScanSegment& segment, const Eigen::Matrix2Xd& at_static, const detail::ScanViews& views)
 {
+  const Eigen::Matrix2Xd& source = views.source ();
+  const matching::SegmentMotionParameters& parameters = views.parameters ();
   const std::vector<Eigen::Vector2d> shifts =
       matching::endAlignments (at_static.col (0), at_static.col (segment.size () - 1),
-                               matching::objectEnds (source, segment), view.target (), view.segments (), parameters);
-  const std::vector<double> radii_squared = squaredRadii (source, segment, parameters);
-  const Placement static_placement = place (at_static, radii_squared, view, parameters.breakpoint_angle);
+                               matching::objectEnds (source, segment), views.target (), views.targetSegments (),
+                               parameters);
+  const std::vector<double> radii_squared = detail::squaredOverlapRadii (source, segment, parameters);
+  const TargetPlacement static_placement = detail::placeInTarget (at_static, radii_squared, views);
   Slide best;
   std::vector<std::pair<int, Eigen::Vector2d>> qualifying;  // gain, shift
   for (std::size_t h = 1; h < shifts.size (); ++h) {  // shifts[0] is the static motion itself
-    Placement shifted = place (at_static.colwise () + shifts[h], radii_squared, view, parameters.breakpoint_angle);
+    TargetPlacement shifted = detail::placeInTarget (at_static.colwise () + shifts[h], radii_squared, views);
     const Comparison c (static_placement, shifted);
     if (!c.dominates ())
       continue;
@@ -195,7 +120,7 @@ bestSlide (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
 /** The segment joins a new cluster of motion \a T; each point takes its nearest target
  *  point there when explained, or no match. */
 void
-addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const Placement& placement, JointResult& result)
+addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const TargetPlacement& placement, JointResult& result)
 {
   const int cluster = static_cast<int> (result.cluster_motions.size ());
   result.cluster_motions.push_back (T);
@@ -219,7 +144,7 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
   if (!canSeparateFromStaticWorld (source, views.target (), result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
-  const TargetView view (views);
+  const detail::SensorView& seen = views.targetView ();
   int added = 0;
   for (const matching::ScanSegment& segment : views.sourceSegments ()) {
     if (segment.size () < parameters.min_segment_points || !outsideMovingClusters (segment, result))
@@ -228,10 +153,11 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
     const std::vector<bool> grazed = detail::grazedPoints (at_static, parameters.breakpoint_angle);
     int seen_through = 0;
     for (Eigen::Index k = 0; k < at_static.cols (); ++k)
-      seen_through += !grazed[k] && view.seesThrough (at_static.col (k)) ? 1 : 0;
+      seen_through +=
+          !grazed[k] && matching::seesThroughToAReturn (seen.profile, at_static.col (k), seen.breakpoint) ? 1 : 0;
     if (seen_through < min_seen_through)
       continue;
-    const Slide slide = bestSlide (source, segment, at_static, parameters, view);
+    const Slide slide = bestSlide (segment, at_static, views);
     if (slide.gain == 0)
       continue;
     Rigid2d T = T_static;

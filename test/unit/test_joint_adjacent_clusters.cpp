@@ -48,6 +48,26 @@ carInTwo (const Rigid2d& front, const Rigid2d& back)
   return result;
 }
 
+/** What the target sees when every point of \a result moved by its cluster's motion
+ *  (the outliers stay). */
+Eigen::Matrix2Xd
+targetOf (const Eigen::Matrix2Xd& source, const JointResult& result)
+{
+  Eigen::Matrix2Xd target = source;
+  for (Eigen::Index i = 0; i < source.cols (); ++i)
+    if (result.source_cluster[i] != kOutlierCluster)
+      target.col (i) = result.cluster_motions[result.source_cluster[i]] * source.col (i);
+  return target;
+}
+
+/** mergeAdjacentClustersThatMoveAlike with the target that \a result's motions make of \a source. */
+int
+mergeOverItsOwnTarget (const Eigen::Matrix2Xd& source, JointResult& result)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  return mergeAdjacentClustersThatMoveAlike (source, targetOf (source, result), parameters, result);
+}
+
 int
 count (const std::vector<int>& labels, int label)
 {
@@ -59,9 +79,8 @@ TEST (JointAdjacentClusters, TwoHalvesOfACarThatMoveAlikeBecomeOne)
   // 0.2 m spacing: overlap radius min(0.15, max(0.03, 2 · 0.2)) = 0.15 m. Halves 0.1 m
   // apart in their motions are one car; the larger (here the first, of equal size)
   // keeps its motion.
-  const pcl_crf::matching::SegmentMotionParameters parameters;
   JointResult result = carInTwo (translation (1.0, 0.0), translation (1.1, 0.0));
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, result), 1);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), result), 1);
   ASSERT_EQ (result.cluster_motions.size (), 2u);
   const int car = result.source_cluster[41];
   EXPECT_NE (car, result.static_cluster);
@@ -75,59 +94,137 @@ TEST (JointAdjacentClusters, TwoHalvesOfACarThatMoveAlikeBecomeOne)
 
 TEST (JointAdjacentClusters, ClustersThatMoveApartOrDoNotMeetOnOneSurfaceStay)
 {
-  const pcl_crf::matching::SegmentMotionParameters parameters;
-  // 0.2 m apart in their motions: beyond the 0.15 m overlap radius.
-  JointResult apart = carInTwo (translation (1.0, 0.0), translation (1.2, 0.0));
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, apart), 0);
+  // 0.2 m apart in their motions, across the car's side: beyond the 0.15 m overlap
+  // radius, and the target shows the back half where its own motion puts it.
+  JointResult apart = carInTwo (translation (1.0, 0.0), translation (1.0, 0.2));
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), apart), 0);
   EXPECT_EQ (apart.cluster_motions.size (), 3u);
   // A rotation about the car's front that swings its back 0.19 m apart.
   const Rigid2d turned = Eigen::Translation2d (0.0, 2.0) * Eigen::Rotation2Dd (0.05) * Eigen::Translation2d (0.0, -2.0);
   JointResult swung = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0) * turned);
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, swung), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), swung), 0);
   // A static point between them: they do not meet.
   JointResult separated = carInTwo (translation (1.0, 0.0), translation (1.05, 0.0));
   separated.source_cluster[51] = 0;
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, separated), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), separated), 0);
   // Nor through an outlier.
   separated.source_cluster[51] = kOutlierCluster;
   separated.source_match[51] = kNoMatch;
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, separated), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), separated), 0);
   // The car's halves on two surfaces: its back half half as far again along the same
   // bearings, 1.6 m beyond the front's last point, past a breakpoint.
   Eigen::Matrix2Xd two_surfaces = wallAndCar ();
   for (int i = 51; i < 61; ++i)
     two_surfaces.col (i) *= 1.5;
   JointResult split = carInTwo (translation (1.0, 0.0), translation (1.05, 0.0));
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (two_surfaces, parameters, split), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (two_surfaces, split), 0);
   // The static world is never merged into, however alike: the wall meets no moving cluster.
   JointResult one_moving = carInTwo (translation (0.0, 0.0), translation (0.0, 0.0));
   for (int i = 41; i < 61; ++i)
     one_moving.source_cluster[i] = 1;
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, one_moving), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), one_moving), 0);
 }
 
 TEST (JointAdjacentClusters, ChainsMergeLargestFirstAndBadResultsAreRejected)
 {
   // Three clusters along the car (6, 8 and 6 points), each 0.1 m from the next in its
   // motion: the middle (largest) takes both neighbours, each within 0.15 m of it.
-  const pcl_crf::matching::SegmentMotionParameters parameters;
   JointResult result = carInTwo (translation (1.0, 0.0), translation (1.1, 0.0));
   result.cluster_motions.push_back (translation (1.2, 0.0));
   for (int i = 41; i < 61; ++i)
     result.source_cluster[i] = i < 47 ? 1 : i < 55 ? 2 : 3;
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, result), 2);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), result), 2);
   ASSERT_EQ (result.cluster_motions.size (), 2u);
   EXPECT_TRUE (result.cluster_motions[result.source_cluster[41]].isApprox (translation (1.1, 0.0)));
 
   JointResult no_static = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
   no_static.static_cluster = -1;
-  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, no_static), 0);
+  EXPECT_EQ (mergeOverItsOwnTarget (wallAndCar (), no_static), 0);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
   JointResult short_result = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
   short_result.source_cluster.pop_back ();
-  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, short_result), std::invalid_argument);
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), wallAndCar (), parameters, short_result),
+                std::invalid_argument);
   JointResult bad_cluster = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
   bad_cluster.source_cluster[45] = 7;
-  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), parameters, bad_cluster), std::invalid_argument);
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), wallAndCar (), parameters, bad_cluster),
+                std::invalid_argument);
+  JointResult bad_match = carInTwo (translation (1.0, 0.0), translation (1.0, 0.0));
+  bad_match.source_match[45] = 61;  // the target has 61 points
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), wallAndCar (), parameters, bad_match),
+                std::invalid_argument);
+}
+
+/** wallAndCar () and a static post of three points beyond the car's back, at
+ *  x = −6 and bearings about 175° (the last in beam order). */
+Eigen::Matrix2Xd
+wallCarAndPost ()
+{
+  Eigen::Matrix2Xd points (2, 64);
+  points.leftCols (61) = wallAndCar ();
+  for (int k = 0; k < 3; ++k)
+    points.col (61 + k) << -6.0, 0.6 - 0.1 * k;
+  return points;
+}
+
+/** \a scene with its car (points 41 … 60) moved by \a T and the rest in place. */
+Eigen::Matrix2Xd
+withCarMoved (Eigen::Matrix2Xd scene, const Rigid2d& T)
+{
+  for (int i = 41; i < 61; ++i)
+    scene.col (i) = T * scene.col (i);
+  return scene;
+}
+
+/** carInTwo () over \a points source points, those past the car's in the static world. */
+JointResult
+carInTwoOf (int points, const Rigid2d& front, const Rigid2d& back)
+{
+  JointResult result = carInTwo (front, back);
+  for (int i = 61; i < points; ++i) {
+    result.source_cluster.push_back (0);
+    result.source_match.push_back (i);
+  }
+  return result;
+}
+
+TEST (JointAdjacentClusters, HalvesOfACarSlidAlongItsSideBecomeOneWhereTheTargetCannotTell)
+{
+  // The car moved 1.1 m along its own side. Its halves were fitted 1.0 m and 1.3 m:
+  // 0.3 m apart, beyond the 0.15 m overlap radius, yet either motion puts the back
+  // half's points within 0.1 m of the car's points in the target (0.2 m apart).
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  JointResult result = carInTwoOf (64, translation (1.0, 0.0), translation (1.3, 0.0));
+  const Eigen::Matrix2Xd target = withCarMoved (wallCarAndPost (), translation (1.1, 0.0));
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallCarAndPost (), target, parameters, result), 1);
+  const int car = result.source_cluster[41];
+  EXPECT_EQ (count (result.source_cluster, car), 20);
+  EXPECT_TRUE (result.cluster_motions[car].isApprox (translation (1.0, 0.0)));
+}
+
+TEST (JointAdjacentClusters, TheCarsEndInTheTargetsViewTellsASlideApart)
+{
+  // The car moved 0.3 m back. Its front (12 points) was fitted 0.6 m back, its back
+  // (8 points) 0.3 m. The front's motion puts the car's last point 0.3 m past the
+  // target's last car point: where the post beyond shows that the target saw through.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  const auto front_twelve = [] (int points) {
+    JointResult result = carInTwoOf (points, translation (-0.6, 0.0), translation (-0.3, 0.0));
+    for (int i = 51; i < 53; ++i)
+      result.source_cluster[i] = 1;
+    return result;
+  };
+  JointResult with_post = front_twelve (64);
+  const Eigen::Matrix2Xd target = withCarMoved (wallCarAndPost (), translation (-0.3, 0.0));
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallCarAndPost (), target, parameters, with_post), 0);
+  EXPECT_EQ (with_post.cluster_motions.size (), 3u);
+  // Without the post the target's view ends at the car's last point: the point past it
+  // is out of view, and the two motions explain every point in view alike.
+  JointResult without_post = front_twelve (61);
+  EXPECT_EQ (mergeAdjacentClustersThatMoveAlike (wallAndCar (), withCarMoved (wallAndCar (), translation (-0.3, 0.0)),
+                                                 parameters, without_post),
+             1);
+  EXPECT_TRUE (without_post.cluster_motions[without_post.source_cluster[41]].isApprox (translation (-0.6, 0.0)));
 }
 
 }  // namespace

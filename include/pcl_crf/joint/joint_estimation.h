@@ -399,21 +399,30 @@ toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
 /** \brief Merges moving clusters that meet on one surface and move alike: two clusters
  *  holding consecutive points of one source segment (matching::segmentScan (), no
  *  breakpoint between them: one continuous surface) become one when the larger one's
- *  motion places every point of the smaller within its overlap radius
- *  (matching::overlapRadius () of its spacing on its segment) of where the smaller
- *  one's own motion does. The merged cluster keeps the larger one's motion; matches
- *  are untouched. Steps that each separate part of one vehicle (the free space at its
- *  ends, the ladder's clusters in the middle) leave such neighbours. Runs until no pair
- *  is left; clusters are renumbered largest first.
+ *  motion
+ *  - places every point of the smaller within its overlap radius
+ *    (matching::overlapRadius () of its spacing on its segment) of where the smaller
+ *    one's own motion does, or
+ *  - explains the smaller one's points as well as their own motion does: of the points
+ *    both motions place in the target's field of view (and not at grazing incidence),
+ *    at least as many lie within their overlap radius of a target point. A car's side
+ *    seen alongside slides along itself; the target shows only its ends, so motions
+ *    farther apart along it than the overlap radius are still alike to the data.
+ *
+ *  The merged cluster keeps the larger one's motion; matches are untouched. Steps that
+ *  each separate part of one vehicle (the free space at its ends, the ladder's clusters
+ *  in the middle) leave such neighbours. Runs until no pair is left; clusters are
+ *  renumbered largest first.
  *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] parameters the breakpoint angle and range noise (segmentation) and the
  *             overlap radius (the matcher's segment parameters)
- *  \param[in,out] result a joint result over \a source
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
  *  \return the number of clusters merged away (0 without a static world)
  *  \throws std::invalid_argument when the result's sizes disagree with each other or
- *  with \a source. */
+ *  with \a source, or a match is not a target point. */
 int
-mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source,
+mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Splits every moving cluster whose points lie in parts more than \a gap apart
