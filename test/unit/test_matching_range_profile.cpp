@@ -113,6 +113,48 @@ TEST (RangeProfile, OnTheEvidenceOfReturnsOnlyADirectionWithoutReturnsSaysNothin
   EXPECT_FALSE (seesThroughToAReturn (profile, polar (60.0, 1.0), distance));
 }
 
+/** Beams every degree over [−10°, 10°]: a post's outline at 6.8 m up to −2°, −1°
+ *  dropped at its edge, then a wall at 14 m. */
+Eigen::Matrix2Xd
+postBeforeAWall ()
+{
+  std::vector<Eigen::Vector2d> returns;
+  for (int degrees = -10; degrees <= 10; ++degrees)
+    if (degrees != -1)
+      returns.push_back (polar (degrees, degrees < 0 ? 6.8 : 14.0));
+  Eigen::Matrix2Xd scan (2, static_cast<Eigen::Index> (returns.size ()));
+  for (std::size_t k = 0; k < returns.size (); ++k)
+    scan.col (static_cast<Eigen::Index> (k)) = returns[k];
+  return scan;
+}
+
+TEST (RangeProfile, BesideADroppedEdgeReturnASeenThroughPointIsNoFirmEvidence)
+{
+  const auto profile = makeRangeProfile (postBeforeAWall ());
+  const auto distance = pcl_crf::matching::breakpointDistance (profile, kLambda, kNoise);
+  // −0.2°: the wall's return at 0° saw past it; the post's at −2° lies 1.8° away, across
+  // the dropped beam. Its breakpoint distance across 1.8° is
+  // 6.8 sin 1.8° / sin 8.2° + 0.03 = 1.53 m, across one step margin (6.8) = 0.79 m.
+  const double across_the_gap = 6.8 * std::sin (1.8 * kDegree) / std::sin (8.2 * kDegree) + 3.0 * kNoise;
+  EXPECT_NEAR (distance.slopeAcross (1.8 * kDegree) * 6.8 + distance.offset, across_the_gap, 1e-12);
+  // 1 m behind the post's outline: beyond one step's distance, within the gap's. The
+  // post's edge may lie anywhere up to the wall's beam, and the point on it.
+  const Eigen::Vector2d behind_the_edge = polar (-0.2, 7.8);
+  EXPECT_TRUE (seesThrough (profile, behind_the_edge, distance));
+  EXPECT_FALSE (seesThroughFirmly (profile, behind_the_edge, distance));
+  // 2.5 m behind it, beyond the gap's distance too: the post does not reach it.
+  EXPECT_TRUE (seesThroughFirmly (profile, polar (-0.2, 9.3), distance));
+  // With the beam at −1° returned (nearer than the point), the beams either side
+  // disagree: not seen through at all.
+  Eigen::Matrix2Xd whole (2, postBeforeAWall ().cols () + 1);
+  whole << postBeforeAWall (), polar (-1.0, 6.8);
+  EXPECT_FALSE (seesThrough (makeRangeProfile (whole), behind_the_edge, distance));
+  // Past a return within one step on both sides there is no gap to continue across.
+  EXPECT_TRUE (seesThroughFirmly (profile, polar (4.5, 7.8), distance));
+  // No λ beyond the bearing difference: the slope is infinite.
+  EXPECT_TRUE (std::isinf (distance.slopeAcross (kLambda)));
+}
+
 TEST (RangeProfile, OneBeamPastASurfacesLastReturnIsNoFirmEvidence)
 {
   const auto profile = makeRangeProfile (wallWithOpening ());

@@ -80,6 +80,13 @@ struct BreakpointDistance
 {
   double slope = 0.0;
   double offset = 0.0;
+  /** λ [rad], for slopeAcross (). */
+  double breakpoint_angle = 0.0;
+
+  /** \brief The slope across a bearing difference \a apart [rad] instead of one step:
+   *  sin(apart) / sin(λ − apart), +inf when λ ≤ apart. */
+  double
+  slopeAcross (double apart) const;
 };
 
 BreakpointDistance
@@ -95,13 +102,20 @@ inFieldOfView (const RangeProfile& profile, const Eigen::Vector2d& point);
 bool
 seesThrough (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
 
-/** \brief seesThrough () without the beams a surface's edge may have dropped: false as
- *  well where no return lies within one step of the point's bearing but the nearest
- *  return on either side, within two steps, lies within the breakpoint distance of it.
- *  Such a direction lies one beam past the last return of a surface the point continues,
- *  and a real laser drops the return of a beam that grazes an edge (mixed pixels), so
- *  it says nothing of free space there (a parked car's edge returns, dropped at one end
- *  in one scan and at the other in the next, look like a slide of one beam). */
+/** \brief seesThrough () without the beams a surface's edge may have dropped. A real
+ *  laser drops the return of a beam that grazes an edge (mixed pixels), so a point one
+ *  beam past the last return of a surface it continues says nothing of free space there
+ *  (a parked car's edge returns, dropped at one end in one scan and at the other in the
+ *  next, look like a slide of one beam). False as well
+ *  - where no return lies within one step of the point's bearing but the nearest return
+ *    on either side, within two steps, lies within the breakpoint distance of it;
+ *  - where the returns within one step all lie farther (seen through) but the nearest
+ *    return on the other side lies one to two steps away, past a beam without a return,
+ *    within the breakpoint distance for their bearing difference Δφ
+ *    (BreakpointDistance::slopeAcross ()): the edge of that return's surface may lie
+ *    anywhere between the dropped beam and the one that saw past it, and the point
+ *    with it (a round post seen from two places shows the second sensor a part of its
+ *    outline just past the first one's last return). */
 bool
 seesThroughFirmly (const RangeProfile& profile, const Eigen::Vector2d& point, const BreakpointDistance& distance);
 
