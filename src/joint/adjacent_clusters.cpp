@@ -6,6 +6,8 @@
 #include "cluster_numbering.h"
 #include "scan_views.h"
 
+#include <algorithm>
+#include <numeric>
 #include <vector>
 
 namespace pcl_crf {
@@ -39,15 +41,46 @@ placesAlike (const Eigen::Matrix2Xd& source, const std::vector<matching::ScanSeg
   return true;
 }
 
+/** Some points of one source segment (in its order), each placed by two motions.
+ *  \a explained_by_first / \a explained_by_second count the points within their overlap
+ *  radius of a target point, of those both motions place in the target's view
+ *  (detail::TargetPlacement: a point leaving it says nothing for or against). */
+struct TwoPlacements
+{
+  detail::TargetPlacement first, second;
+  int explained_by_first = 0;
+  int explained_by_second = 0;
+};
+
+TwoPlacements
+placeByBoth (const detail::ScanViews& views, const matching::ScanSegment& segment, const std::vector<int>& members,
+             const Rigid2d& first, const Rigid2d& second)
+{
+  const Eigen::Matrix2Xd& source = views.source ();
+  const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
+  std::vector<double> radii_squared;
+  Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (members.size ()));
+  for (std::size_t k = 0; k < members.size (); ++k) {
+    radii_squared.push_back (segment_radii[members[k] - segment.begin]);
+    points.col (static_cast<Eigen::Index> (k)) = source.col (members[k]);
+  }
+  TwoPlacements both{detail::placeInTarget (first * points, radii_squared, views),
+                     detail::placeInTarget (second * points, radii_squared, views)};
+  for (std::size_t k = 0; k < members.size (); ++k)
+    if (both.first.in_view[k] && both.second.in_view[k]) {
+      both.explained_by_first += both.first.explained[k] ? 1 : 0;
+      both.explained_by_second += both.second.explained[k] ? 1 : 0;
+    }
+  return both;
+}
+
 /** Whether motion \a T explains the points of cluster \a l as well as the cluster's own
- *  motion: of the points both place in the target's view (detail::TargetPlacement), at
- *  least as many within their overlap radius of a target point. A surface that slides
- *  along itself looks alike to the target wherever it slid, except at its ends: there
- *  two motions farther apart than the overlap radius are still the same to the data. */
+ *  motion (placeByBoth () on each segment): a surface that slides along itself looks
+ *  alike to the target wherever it slid, except at its ends, so that there two motions
+ *  farther apart than the overlap radius are still the same to the data. */
 bool
 explainsAsWell (const detail::ScanViews& views, const JointResult& result, int l, const Rigid2d& T)
 {
-  const Eigen::Matrix2Xd& source = views.source ();
   int own = 0, other = 0;
   for (const matching::ScanSegment& segment : views.sourceSegments ()) {
     std::vector<int> members;  // of cluster l, in the segment's order
@@ -56,22 +89,48 @@ explainsAsWell (const detail::ScanViews& views, const JointResult& result, int l
         members.push_back (i);
     if (members.empty ())
       continue;
-    const std::vector<double> all_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
-    std::vector<double> radii_squared;
-    Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (members.size ()));
-    for (std::size_t k = 0; k < members.size (); ++k) {
-      radii_squared.push_back (all_radii[members[k] - segment.begin]);
-      points.col (k) = source.col (members[k]);
-    }
-    const detail::TargetPlacement by_own = detail::placeInTarget (result.cluster_motions[l] * points, radii_squared, views);
-    const detail::TargetPlacement by_other = detail::placeInTarget (T * points, radii_squared, views);
-    for (std::size_t k = 0; k < members.size (); ++k)
-      if (by_own.in_view[k] && by_other.in_view[k]) {
-        own += by_own.explained[k] ? 1 : 0;
-        other += by_other.explained[k] ? 1 : 0;
-      }
+    const TwoPlacements both = placeByBoth (views, segment, members, result.cluster_motions[l], T);
+    own += both.explained_by_first;
+    other += both.explained_by_second;
   }
   return other >= own;
+}
+
+/** The static world's points [begin, end) of \a segment join the neighbouring moving
+ *  cluster (at begin − 1 or at end) whose motion explains most of them, when it
+ *  explains at least one and as many as the static motion does (placeByBoth ()); each
+ *  takes its nearest target point there when explained, or no match.
+ *  \return true when they joined one. */
+bool
+extendOverStaticRun (const detail::ScanViews& views, const matching::ScanSegment& segment, int begin, int end,
+                     JointResult& result)
+{
+  std::vector<int> run (static_cast<std::size_t> (end - begin));
+  std::iota (run.begin (), run.end (), begin);
+  const Rigid2d& T_static = result.cluster_motions[result.static_cluster];
+  int best = -1;
+  TwoPlacements best_placements;
+  for (const int neighbour : {begin - 1, end}) {
+    if (neighbour < segment.begin || neighbour >= segment.end || !moving (result, neighbour))
+      continue;
+    const int l = result.source_cluster[neighbour];
+    TwoPlacements both = placeByBoth (views, segment, run, result.cluster_motions[l], T_static);
+    if (both.explained_by_first == 0 || both.explained_by_first < both.explained_by_second)
+      continue;
+    if (best < 0 || both.explained_by_first > best_placements.explained_by_first) {
+      best = l;
+      best_placements = std::move (both);
+    }
+  }
+  if (best < 0)
+    return false;
+  for (std::size_t k = 0; k < run.size (); ++k) {
+    result.source_cluster[run[k]] = best;
+    result.source_match[run[k]] =
+        best_placements.first.explained[k] ? best_placements.first.nearest.indices (0, static_cast<Eigen::Index> (k))
+                                           : kNoMatch;
+  }
+  return true;
 }
 
 /** Merges one pair of adjacent clusters that move alike (the smaller into the larger).
@@ -122,6 +181,34 @@ mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source, const Eigen:
                                     const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   return detail::mergeAdjacentClustersThatMoveAlike (detail::ScanViews (source, target, parameters), result);
+}
+
+int
+detail::extendMovingClustersOverTheirSurfaces (const ScanViews& views, JointResult& result)
+{
+  checkResultAgainstScans ("extendMovingClustersOverTheirSurfaces", views.source (), views.target (), result);
+  if (result.static_cluster < 0)
+    return 0;
+  int extended = 0;
+  for (const matching::ScanSegment& segment : views.sourceSegments ())
+    for (int begin = segment.begin; begin < segment.end;) {
+      int end = begin;  // [begin, end): a run of the static world's points
+      while (end < segment.end && result.source_cluster[end] == result.static_cluster)
+        ++end;
+      if (end > begin && extendOverStaticRun (views, segment, begin, end, result))
+        ++extended;
+      begin = std::max (end, begin + 1);
+    }
+  if (extended > 0)
+    numberLargestFirst (result);
+  return extended;
+}
+
+int
+extendMovingClustersOverTheirSurfaces (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                       const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  return detail::extendMovingClustersOverTheirSurfaces (detail::ScanViews (source, target, parameters), result);
 }
 
 }  // namespace joint

@@ -388,6 +388,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     detail::separatePointsTheTargetSeesThrough (views, result);
   if (parameters.merge_adjacent_clusters_that_move_alike)
     detail::mergeAdjacentClustersThatMoveAlike (views, result);
+  if (parameters.extend_moving_clusters_over_their_surfaces)
+    detail::extendMovingClustersOverTheirSurfaces (views, result);
   if (parameters.separate_distant_parts)
     separateDistantParts (source, parameters.part_gap, result);
   if (parameters.mark_points_that_moved_away)

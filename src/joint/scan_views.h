@@ -145,6 +145,8 @@ separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 
 int
 mergeAdjacentClustersThatMoveAlike (const ScanViews& views, JointResult& result);
+int
+extendMovingClustersOverTheirSurfaces (const ScanViews& views, JointResult& result);
 
 int
 markPointsThatMovedAway (const ScanViews& views, JointResult& result);

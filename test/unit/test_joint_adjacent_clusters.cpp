@@ -16,6 +16,7 @@ using pcl_crf::kOutlierCluster;
 using pcl_crf::Rigid2d;
 using pcl_crf::test::translation;
 using pcl_crf::joint::JointResult;
+using pcl_crf::joint::extendMovingClustersOverTheirSurfaces;
 using pcl_crf::joint::mergeAdjacentClustersThatMoveAlike;
 
 /** A wall ahead along y = 6 (x from 4 down to −4, 0.2 m apart: 41 points, the static
@@ -225,6 +226,73 @@ TEST (JointAdjacentClusters, TheCarsEndInTheTargetsViewTellsASlideApart)
                                                  parameters, without_post),
              1);
   EXPECT_TRUE (without_post.cluster_motions[without_post.source_cluster[41]].isApprox (translation (-0.6, 0.0)));
+}
+
+/** The wall and the car of wallAndCar () in the static world (identity), the car's
+ *  points [\a begin, \a end) in cluster 1 (motion \a T); every point matched to itself. */
+JointResult
+partOfTheCarMoving (int begin, int end, const Rigid2d& T)
+{
+  JointResult result;
+  result.cluster_motions = {Rigid2d::Identity (), T};
+  result.static_cluster = 0;
+  for (int i = 0; i < 61; ++i) {
+    result.source_cluster.push_back (i >= begin && i < end ? 1 : 0);
+    result.source_match.push_back (i);
+  }
+  return result;
+}
+
+TEST (JointAdjacentClusters, TheStaticRestOfACarsSideJoinsItsMovingEnd)
+{
+  // The car moved 1 m along its side. Only its last five points (its back) were given
+  // the car's motion; the static motion puts the other fifteen on the car's side in the
+  // target too (0.2 m apart there, within 0.15 m of none but their own), as does the car's.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  const Eigen::Matrix2Xd target = withCarMoved (wallAndCar (), translation (1.0, 0.0));
+  JointResult result = partOfTheCarMoving (56, 61, translation (1.0, 0.0));
+  EXPECT_EQ (extendMovingClustersOverTheirSurfaces (wallAndCar (), target, parameters, result), 1);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  const int car = result.source_cluster[41];
+  EXPECT_NE (car, result.static_cluster);
+  EXPECT_EQ (count (result.source_cluster, car), 20);
+  EXPECT_EQ (count (result.source_cluster, result.static_cluster), 41);  // the wall, a surface of its own
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{41, 20}));
+  for (int i = 41; i < 56; ++i)  // under the car's motion each lands on its own target point
+    EXPECT_EQ (result.source_match[i], i) << i;
+}
+
+TEST (JointAdjacentClusters, StaticPointsTheMovingMotionExplainsWorseStay)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  // The car's back moved 0.5 m across its side (the target shows it there), its front
+  // stood: the back's motion puts the front 0.5 m off the car's side.
+  Eigen::Matrix2Xd target = wallAndCar ();
+  for (int i = 56; i < 61; ++i)
+    target.col (i) += Eigen::Vector2d (0.0, 0.5);
+  JointResult result = partOfTheCarMoving (56, 61, translation (0.0, 0.5));
+  EXPECT_EQ (extendMovingClustersOverTheirSurfaces (wallAndCar (), target, parameters, result), 0);
+  EXPECT_EQ (count (result.source_cluster, result.source_cluster[60]), 5);
+  // Between two moving clusters, the run joins the one whose motion explains it: the
+  // car moved 1 m along its side; its back has that motion, its front one 0.3 m across.
+  JointResult two = partOfTheCarMoving (56, 61, translation (1.0, 0.0));
+  two.cluster_motions.push_back (translation (1.0, 0.3));
+  for (int i = 41; i < 46; ++i)
+    two.source_cluster[i] = 2;
+  EXPECT_EQ (extendMovingClustersOverTheirSurfaces (wallAndCar (), withCarMoved (wallAndCar (), translation (1.0, 0.0)),
+                                                   parameters, two),
+             1);
+  EXPECT_EQ (count (two.source_cluster, two.source_cluster[50]), 15);
+  EXPECT_EQ (two.source_cluster[50], two.source_cluster[60]);
+  EXPECT_EQ (count (two.source_cluster, two.source_cluster[41]), 5);
+  // Without a static world nothing is extended; inconsistent results are rejected.
+  JointResult no_static = partOfTheCarMoving (56, 61, translation (1.0, 0.0));
+  no_static.static_cluster = -1;
+  EXPECT_EQ (extendMovingClustersOverTheirSurfaces (wallAndCar (), target, parameters, no_static), 0);
+  JointResult short_result = partOfTheCarMoving (56, 61, translation (1.0, 0.0));
+  short_result.source_match.pop_back ();
+  EXPECT_THROW (extendMovingClustersOverTheirSurfaces (wallAndCar (), target, parameters, short_result),
+                std::invalid_argument);
 }
 
 }  // namespace

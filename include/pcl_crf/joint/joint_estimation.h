@@ -139,7 +139,9 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  do points that moved out of where the static motion puts them, paired with points
  *  that moved in or with the object's other view hidden behind it
  *  (separatePointsTheTargetSeesThrough ()); then moving clusters that meet on one
- *  surface and move alike become one (mergeAdjacentClustersThatMoveAlike ()); last, a
+ *  surface and move alike become one (mergeAdjacentClustersThatMoveAlike ()), and take
+ *  the static points of their surface that their motion explains as well
+ *  (extendMovingClustersOverTheirSurfaces ()); last, a
  *  moving cluster whose points lie in parts far apart becomes one cluster per part
  *  (separateDistantParts ()), and the outliers the target saw through where the static
  *  motion puts them are marked as moved away (markPointsThatMovedAway ()).
@@ -424,6 +426,29 @@ toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
 int
 mergeAdjacentClustersThatMoveAlike (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                     const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Extends moving clusters over the static world's points of their own surfaces:
+ *  each run of consecutive static-world points on a source segment (matching::segmentScan (),
+ *  no breakpoint: one continuous surface, one rigid object) joins a moving cluster holding
+ *  the point just before or after it when that cluster's motion explains at least one of
+ *  them and as many as the static motion does: of the points both motions place in the
+ *  target's field of view (and not at grazing incidence), as many lie within their overlap
+ *  radius of a target point. Of two such neighbours the one explaining more wins. The
+ *  joined points take their nearest target point under the cluster's motion when within
+ *  their overlap radius, or no match. A car's side seen alongside slides along itself:
+ *  the static motion explains its middle as well as the car's does, and only its ends
+ *  gave the car its cluster. Clusters are renumbered largest first.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the breakpoint angle and range noise (segmentation) and the
+ *             overlap radius (the matcher's segment parameters)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of runs that joined a moving cluster (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or
+ *  with \a source, or a match is not a target point. */
+int
+extendMovingClustersOverTheirSurfaces (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                       const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Splits every moving cluster whose points lie in parts more than \a gap apart
  *  into one cluster per part, each with the cluster's motion: objects that happen to

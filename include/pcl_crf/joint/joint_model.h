@@ -70,6 +70,10 @@ struct JointParameters
    *  and whose motions place the smaller one's points alike become one
    *  (mergeAdjacentClustersThatMoveAlike ()). */
   bool merge_adjacent_clusters_that_move_alike = true;
+  /** true (default): the static world's points of a moving cluster's own source segment
+   *  that its motion explains as well as the static motion join it
+   *  (extendMovingClustersOverTheirSurfaces ()). */
+  bool extend_moving_clusters_over_their_surfaces = true;
   /** true (default): a moving cluster whose points lie in parts more than part_gap
    *  apart becomes one cluster per part, each with its motion (separateDistantParts ()). */
   bool separate_distant_parts = true;
