@@ -236,21 +236,6 @@ compareWithReturn (double return_range, double range, const BreakpointDistance& 
   return ReturnsNear::Mixed;
 }
 
-/** The breakpoint distance between a point at \a range and a return \a apart [rad] from
- *  its bearing, within one step: a surface through the return recedes by at most the
- *  detector's distance across their bearing difference, widened by the point's own
- *  lateral uncertainty (3σ, the distance's offset, as an angle at its range), and by no
- *  more than across one step. A point on a beam's own bearing is thus compared at the
- *  range noise, not at a whole step's worth of grazing surface. */
-BreakpointDistance
-distanceToANearReturn (const BreakpointDistance& distance, double apart, double range, double step)
-{
-  BreakpointDistance near = distance;
-  const double uncertainty = range > 0.0 ? distance.offset / range : step;
-  near.slope = distance.slopeAcross (std::min (step, apart + uncertainty));
-  return near;
-}
-
 /** Compares \a point with the returns within one step of its bearing (see ReturnsNear;
  *  OutOfView as well for a profile that cannot tell: fewer than two returns, no step). */
 ReturnsNear
@@ -274,7 +259,7 @@ compareWithReturnsNear (const RangeProfile& profile, const Eigen::Vector2d& poin
                                      counterClockwise (theta, profile.bearings (j)));
       if (apart > step)
         break;
-      switch (compareWithReturn (profile.ranges (j), range, distanceToANearReturn (distance, apart, range, step))) {
+      switch (compareWithReturn (profile.ranges (j), range, distance)) {
         case ReturnsNear::Farther: farther = true; break;
         case ReturnsNear::Nearer: nearer = true; break;
         default: return ReturnsNear::Mixed;
