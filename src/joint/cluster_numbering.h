@@ -22,12 +22,13 @@ void
 checkResultClusters (const char* function, const JointResult& result);
 
 /** checkResultClusters (), and \throws std::invalid_argument, naming \a function, when
- *  the result has not one cluster per point of \a source. */
+ *  the result has not one cluster per point of \a source or \a source holds a NaN or
+ *  infinite point. */
 void
 checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& source, const JointResult& result);
 
 /** checkResultClusters (), and \throws std::invalid_argument, naming \a function, when a
- *  match is not a point of \a target. */
+ *  match is not a point of \a target or \a target holds a NaN or infinite point. */
 void
 checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
 

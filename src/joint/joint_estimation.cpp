@@ -295,6 +295,8 @@ void
 detail::checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& source, const JointResult& result)
 {
   checkResultClusters (function, result);
+  if (!source.allFinite ())
+    failIn (function, "the source scan holds NaN or infinite points");
   if (static_cast<Eigen::Index> (result.source_cluster.size ()) != source.cols ())
     failIn (function, std::to_string (source.cols ()) + " source points but " +
                           std::to_string (result.source_cluster.size ()) + " clusters: give one per point");
@@ -304,6 +306,8 @@ void
 detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
 {
   checkResultClusters (function, result);
+  if (!target.allFinite ())
+    failIn (function, "the target scan holds NaN or infinite points");
   checkMatches (function, target, result);
 }
 
@@ -312,7 +316,7 @@ detail::checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& s
                                  const JointResult& result)
 {
   checkResultAgainstSource (function, source, result);
-  checkMatches (function, target, result);
+  checkResultAgainstTarget (function, target, result);
 }
 
 void

@@ -6,7 +6,9 @@
 #include "synthetic_scene.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
@@ -293,6 +295,20 @@ TEST (JointAdjacentClusters, StaticPointsTheMovingMotionExplainsWorseStay)
   short_result.source_match.pop_back ();
   EXPECT_THROW (extendMovingClustersOverTheirSurfaces (wallAndCar (), target, parameters, short_result),
                 std::invalid_argument);
+  // A NaN point in either scan is named, by this step and by the merge.
+  Eigen::Matrix2Xd with_nan = wallAndCar ();
+  with_nan (0, 50) = std::numeric_limits<double>::quiet_NaN ();
+  JointResult any = partOfTheCarMoving (56, 61, translation (1.0, 0.0));
+  EXPECT_THROW (extendMovingClustersOverTheirSurfaces (with_nan, target, parameters, any), std::invalid_argument);
+  EXPECT_THROW (extendMovingClustersOverTheirSurfaces (wallAndCar (), with_nan, parameters, any), std::invalid_argument);
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (with_nan, target, parameters, any), std::invalid_argument);
+  EXPECT_THROW (mergeAdjacentClustersThatMoveAlike (wallAndCar (), with_nan, parameters, any), std::invalid_argument);
+  try {
+    mergeAdjacentClustersThatMoveAlike (with_nan, target, parameters, any);
+  }
+  catch (const std::invalid_argument& e) {
+    EXPECT_NE (std::string (e.what ()).find ("NaN"), std::string::npos) << e.what ();
+  }
 }
 
 }  // namespace
