@@ -376,6 +376,8 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
       matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, segments, result);
+  if (parameters.remove_clusters_a_nearer_cluster_explains)
+    removeClustersANearerClusterExplains (source, target, segments, result);
   const detail::ScanViews views (source, target, segments, parameters.sensor);  // shared by the steps below
   if (parameters.remove_clusters_the_target_sees_through)
     detail::removeClustersTheTargetSeesThrough (views, result);

@@ -62,6 +62,11 @@ detail::markPointsThatMovedAway (const ScanViews& views, JointResult& result)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   checkResultAgainstScans ("markPointsThatMovedAway", source, views.target (), result);
+  std::vector<int> earlier;  // marked by an earlier step, and still outliers
+  for (int i : result.moved_away)
+    if (i >= 0 && static_cast<std::size_t> (i) < result.source_cluster.size () &&
+        result.source_cluster[i] == kOutlierCluster)
+      earlier.push_back (i);
   result.moved_away.clear ();
   if (!canSeparateFromStaticWorld (source, views.target (), result))
     return 0;
@@ -73,6 +78,9 @@ detail::markPointsThatMovedAway (const ScanViews& views, JointResult& result)
       continue;  // no run of outliers long enough
     appendRuns (segment, seenLeaving (views, segment, T_static, result), min_points, result.moved_away);
   }
+  result.moved_away.insert (result.moved_away.end (), earlier.begin (), earlier.end ());
+  std::sort (result.moved_away.begin (), result.moved_away.end ());
+  result.moved_away.erase (std::unique (result.moved_away.begin (), result.moved_away.end ()), result.moved_away.end ());
   return static_cast<int> (result.moved_away.size ());
 }
 

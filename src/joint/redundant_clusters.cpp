@@ -11,20 +11,32 @@ namespace joint {
 
 namespace {
 
-/** The target points the static world's points are matched to, as a kd-tree. */
+/** The target points that the points of the clusters \a by marks (one flag per
+ *  cluster) are matched to, as a kd-tree. */
 KnnIndex
-staticWorldTargets (const Eigen::Matrix2Xd& target, const JointResult& result)
+claimedTargets (const Eigen::Matrix2Xd& target, const JointResult& result, const std::vector<bool>& by)
 {
   std::vector<int> claimed;
-  for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
-    if (result.source_cluster[i] == result.static_cluster && result.source_match[i] != kNoMatch)
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    const int l = result.source_cluster[i];
+    if (l != kOutlierCluster && by[l] && result.source_match[i] != kNoMatch)
       claimed.push_back (result.source_match[i]);
+  }
   Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (claimed.size ()));
   for (std::size_t c = 0; c < claimed.size (); ++c)
     points.col (static_cast<Eigen::Index> (c)) = target.col (claimed[c]);
   KnnIndex index;
   index.build (points);
   return index;
+}
+
+/** The target points the static world's points are matched to, as a kd-tree. */
+KnnIndex
+staticWorldTargets (const Eigen::Matrix2Xd& target, const JointResult& result)
+{
+  std::vector<bool> by (result.cluster_motions.size (), false);
+  by[result.static_cluster] = true;
+  return claimedTargets (target, result, by);
 }
 
 /** Per cluster: true when it has matched points and most of them (more than half)
@@ -58,6 +70,68 @@ explainedClusters (const Eigen::Matrix2Xd& target, const matching::SegmentMotion
   for (int l = 0; l < clusters; ++l)
     explained[l] = matched[l] > 0 && 2 * unexplained[l] < matched[l];  // a majority
   return explained;
+}
+
+/** The moving clusters, nearest to the static motion first: by the mean distance
+ *  between where their motion and the static one put their points. */
+std::vector<int>
+movingClustersByDisplacement (const Eigen::Matrix2Xd& source, const JointResult& result)
+{
+  const int clusters = static_cast<int> (result.cluster_motions.size ());
+  const Rigid2d& T_static = result.cluster_motions[result.static_cluster];
+  std::vector<double> displacement (static_cast<std::size_t> (clusters), 0.0);
+  std::vector<int> points (static_cast<std::size_t> (clusters), 0);
+  for (std::size_t i = 0; i < result.source_cluster.size (); ++i) {
+    const int l = result.source_cluster[i];
+    if (l == kOutlierCluster || l == result.static_cluster)
+      continue;
+    const Eigen::Vector2d p = source.col (static_cast<Eigen::Index> (i));
+    displacement[l] += (result.cluster_motions[l] * p - T_static * p).norm ();
+    ++points[l];
+  }
+  std::vector<int> order;
+  for (int l = 0; l < clusters; ++l)
+    if (l != result.static_cluster) {
+      order.push_back (l);
+      displacement[l] /= std::max (points[l], 1);
+    }
+  std::stable_sort (order.begin (), order.end (), [&] (int a, int b) { return displacement[a] < displacement[b]; });
+  return order;
+}
+
+/** The points of the clusters \a removed marks, of each such cluster the static motion
+ *  mostly (more than half) puts farther than their overlap radius from every target
+ *  point. */
+std::vector<int>
+pointsTheStaticMotionLeavesUnexplained (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                        const matching::SegmentMotionParameters& parameters,
+                                        const JointResult& result, const std::vector<bool>& removed)
+{
+  KnnIndex target_points;
+  target_points.build (target);
+  const Rigid2d& T_static = result.cluster_motions[result.static_cluster];
+  std::vector<int> marked;
+  for (std::size_t l = 0; l < removed.size (); ++l) {
+    if (!removed[l])
+      continue;
+    std::vector<int> points;
+    for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
+      if (result.source_cluster[i] == static_cast<int> (l))
+        points.push_back (static_cast<int> (i));
+    Eigen::Matrix2Xd at_static (2, static_cast<Eigen::Index> (points.size ()));
+    for (std::size_t k = 0; k < points.size (); ++k)
+      at_static.col (static_cast<Eigen::Index> (k)) = T_static * source.col (points[k]);
+    const KnnIndex::Result nearest = target_points.search (at_static, 1);  // one batched query
+    int explained = 0;
+    for (std::size_t k = 0; k < points.size (); ++k) {
+      const double radius =
+          matching::overlapRadius (parameters, matching::pointSpacing (source, points[k], 0, source.cols ()));
+      explained += nearest.squared_distances (0, static_cast<Eigen::Index> (k)) <= radius * radius ? 1 : 0;
+    }
+    if (2 * explained < static_cast<int> (points.size ()))
+      marked.insert (marked.end (), points.begin (), points.end ());
+  }
+  return marked;
 }
 
 }  // namespace
@@ -100,6 +174,33 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
   if (claimed.size () == 0)
     return 0;
   return detail::removeClusters (explainedClusters (target, parameters, claimed, result), result);
+}
+
+int
+removeClustersANearerClusterExplains (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, JointResult& result)
+{
+  detail::checkResultAgainstScans ("removeClustersANearerClusterExplains", source, target, result);
+  if (result.static_cluster < 0)
+    return 0;
+  const std::vector<int> order = movingClustersByDisplacement (source, result);
+  std::vector<bool> removed (result.cluster_motions.size (), false), nearer (removed);
+  for (std::size_t k = 0; k < order.size (); ++k) {
+    const int l = order[k];
+    if (k > 0) {
+      const KnnIndex claimed = claimedTargets (target, result, nearer);
+      removed[l] = claimed.size () > 0 && explainedClusters (target, parameters, claimed, result)[l];
+    }
+    nearer[l] = !removed[l];
+  }
+  if (std::none_of (removed.begin (), removed.end (), [] (bool r) { return r; }))
+    return 0;
+  const std::vector<int> moved_away = pointsTheStaticMotionLeavesUnexplained (source, target, parameters, result, removed);
+  const int count = detail::removeClusters (removed, result);
+  result.moved_away.insert (result.moved_away.end (), moved_away.begin (), moved_away.end ());
+  std::sort (result.moved_away.begin (), result.moved_away.end ());
+  result.moved_away.erase (std::unique (result.moved_away.begin (), result.moved_away.end ()), result.moved_away.end ());
+  return count;
 }
 
 }  // namespace joint

@@ -390,6 +390,50 @@ TEST (JointEstimation, ACarAlongsideTakesTheRestOfItsSideFromTheStaticWorld)
   EXPECT_GT (scorePair (pair, joint::toPrediction (pair.source, r)).v_measure, 0.92);
 }
 
+TEST (JointEstimation, ACarThatLeftTheViewIsNotMatchedOntoTheCarFollowingIt)
+{
+  // Test pair 17: in the oncoming lane a car of 59 points 7.6 m away drives out of the
+  // target's view behind the sensor, and the car 12.4 m away (27 points) takes its
+  // place. The first was clustered with a motion onto the second's view in the target,
+  // 6.4 m from its true one, both clusters claiming 19 target points. The one that moved
+  // farther from the static motion goes: its points become outliers, free for the
+  // later steps, which give the car a cluster of its own with its true motion.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0017");
+  const int leaving = 3, following = 1;
+  ASSERT_EQ (pointsOfObject (pair.source_object, leaving), 59);
+  ASSERT_EQ (pointsOfObject (pair.source_object, following), 27);
+  joint::JointParameters parameters;
+  parameters.sensor = pair.sensor;
+  joint::JointParameters kept = parameters;
+  kept.remove_clusters_a_nearer_cluster_explains = false;
+  const auto score = [&] (const joint::JointParameters& p) {
+    return scorePair (pair, joint::toPrediction (pair.source, joint::estimateJoint (pair.source, pair.target,
+                                                                                     pair.odometry, shippedModel (), p)));
+  };
+  const pcl_crf::PairScores before = score (kept), after = score (parameters);
+  EXPECT_NEAR (before.association_accuracy, 0.809, 0.001);
+  EXPECT_NEAR (after.association_accuracy, 0.948, 0.001);
+  EXPECT_NEAR (after.v_measure, before.v_measure, 1e-9);  // the car is still one group
+  const Rigid2d& T_true = pair.objects[pair.objectIndex (leaving)].T_target_source;
+  const auto motionError = [&] (const joint::JointParameters& p) {  // mean over the car's points
+    const joint::JointResult r = joint::estimateJoint (pair.source, pair.target, pair.odometry, shippedModel (), p);
+    double error = 0.0;
+    int cluster = -2;
+    for (std::size_t i = 0; i < pair.source_object.size (); ++i)
+      if (pair.source_object[i] == leaving) {
+        EXPECT_TRUE (cluster == -2 || r.source_cluster[i] == cluster) << i;  // one cluster
+        cluster = r.source_cluster[i];
+        EXPECT_NE (cluster, r.static_cluster);
+        EXPECT_NE (cluster, kOutlierCluster);
+        const Eigen::Vector2d p_i = pair.source.col (static_cast<Eigen::Index> (i));
+        error += (r.cluster_motions[cluster] * p_i - T_true * p_i).norm () / 59.0;
+      }
+    return error;
+  };
+  EXPECT_GT (motionError (kept), 6.0);
+  EXPECT_LT (motionError (parameters), 0.1);
+}
+
 TEST (JointEstimation, ACarThatLeftTheTargetsViewIsNotTheStaticWorld)
 {
   // Simulator seed 3003, pair 23: a car of 68 points that the target no longer sees.

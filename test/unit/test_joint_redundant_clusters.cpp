@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scene.h"
+
 #include <stdexcept>
 #include <vector>
 
@@ -10,6 +12,7 @@ namespace {
 using pcl_crf::kNoMatch;
 using pcl_crf::kOutlierCluster;
 using pcl_crf::joint::JointResult;
+using pcl_crf::joint::removeClustersANearerClusterExplains;
 using pcl_crf::joint::removeClustersTheStaticWorldExplains;
 
 /** A wall of 101 target points 0.1 m apart along y = 5 m, x = 0 … 10 m. */
@@ -149,6 +152,98 @@ TEST (JointRedundantClusters, RejectsInconsistentResults)
   JointResult static_cluster = wallResult ();
   static_cluster.static_cluster = 4;
   EXPECT_THROW (removeClustersTheStaticWorldExplains (wall (), parameters, static_cluster), std::invalid_argument);
+}
+
+/** A street seen twice from a standing sensor: a wall of 41 points 0.1 m apart along
+ *  y = −5 m (x = 0 … 4 m) in both scans, and in the oncoming lane (y = 5 m) two cars of 11
+ *  points each. In the source the near car spans x = 1 … 2 m and the far one 6 … 7 m;
+ *  in the target the far car has come 2 m nearer (4 … 5 m) and the near one has left
+ *  the view. Points: the wall, then the near car, then the far car; the target's
+ *  points: the wall, then the far car. With \a post, the target also shows a post where
+ *  the near car stood in the source (its 11 points last). */
+void
+leaderLeftTheView (Eigen::Matrix2Xd& source, Eigen::Matrix2Xd& target, bool post = false)
+{
+  source.resize (2, 63);
+  target.resize (2, post ? 63 : 52);
+  for (int k = 0; k < 41; ++k)
+    source.col (k) = target.col (k) = Eigen::Vector2d (0.1 * k, -5.0);
+  for (int k = 0; k < 11; ++k) {
+    source.col (41 + k) = Eigen::Vector2d (1.0 + 0.1 * k, 5.0);
+    source.col (52 + k) = Eigen::Vector2d (6.0 + 0.1 * k, 5.0);
+    target.col (41 + k) = Eigen::Vector2d (4.0 + 0.1 * k, 5.0);
+    if (post)
+      target.col (52 + k) = Eigen::Vector2d (1.0 + 0.1 * k, 5.0);
+  }
+}
+
+/** The wall in the static world (identity); the far car (cluster 2) with its true motion,
+ *  2 m nearer; the near car (cluster 1) with the motion that carries it 3 m on, onto
+ *  the far car's view in the target. Every point matched to the target point its
+ *  cluster's motion puts it on. */
+JointResult
+leaderOnTheFollower ()
+{
+  JointResult result;
+  result.cluster_motions = {pcl_crf::Rigid2d::Identity (), pcl_crf::test::translation (3.0, 0.0),
+                            pcl_crf::test::translation (-2.0, 0.0)};
+  result.static_cluster = 0;
+  addPoints (result, 0, 0, 41);
+  addPoints (result, 1, 41, 11);
+  addPoints (result, 2, 41, 11);
+  return result;
+}
+
+TEST (JointRedundantClusters, OfTwoClustersClaimingOneViewTheOneThatMovedFartherGoes)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  Eigen::Matrix2Xd source, target;
+  leaderLeftTheView (source, target);
+  JointResult result = leaderOnTheFollower ();
+  EXPECT_EQ (removeClustersANearerClusterExplains (source, target, parameters, result), 1);
+  ASSERT_EQ (result.cluster_motions.size (), 2u);
+  // The far car keeps its cluster, motion and matches; the near one becomes outliers,
+  // and, since the static motion puts it where the target shows nothing, moved away.
+  const int far = result.source_cluster[52];
+  EXPECT_NE (far, result.static_cluster);
+  EXPECT_TRUE (result.cluster_motions[far].isApprox (pcl_crf::test::translation (-2.0, 0.0)));
+  std::vector<int> near_car;
+  for (int i = 41; i < 52; ++i) {
+    EXPECT_EQ (result.source_cluster[i], kOutlierCluster) << i;
+    EXPECT_EQ (result.source_match[i], kNoMatch) << i;
+    EXPECT_EQ (result.source_match[i + 11], i) << i;
+    near_car.push_back (i);
+  }
+  EXPECT_EQ (result.moved_away, near_car);
+  EXPECT_EQ (result.cluster_sizes, (std::vector<int>{41, 11}));
+}
+
+TEST (JointRedundantClusters, ARemovedClusterTheStaticMotionExplainsIsNotMovedAway)
+{
+  // A post in the target where the near car stood: the static motion explains its points,
+  // so they are outliers, not moved away.
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  Eigen::Matrix2Xd source, target;
+  leaderLeftTheView (source, target, true);
+  JointResult result = leaderOnTheFollower ();
+  EXPECT_EQ (removeClustersANearerClusterExplains (source, target, parameters, result), 1);
+  EXPECT_EQ (result.source_cluster[41], kOutlierCluster);
+  EXPECT_TRUE (result.moved_away.empty ());
+  // Clusters that claim different views both stay: the far car matched elsewhere.
+  JointResult apart = leaderOnTheFollower ();
+  leaderLeftTheView (source, target);
+  for (int i = 52; i < 63; ++i)
+    apart.source_match[i] = i - 52;  // onto the wall
+  EXPECT_EQ (removeClustersANearerClusterExplains (source, target, parameters, apart), 0);
+  EXPECT_EQ (apart.cluster_motions.size (), 3u);
+  // Without a static world nothing is removed; inconsistent results are rejected.
+  JointResult no_static = leaderOnTheFollower ();
+  no_static.static_cluster = -1;
+  EXPECT_EQ (removeClustersANearerClusterExplains (source, target, parameters, no_static), 0);
+  JointResult short_result = leaderOnTheFollower ();
+  short_result.source_cluster.pop_back ();
+  EXPECT_THROW (removeClustersANearerClusterExplains (source, target, parameters, short_result),
+                std::invalid_argument);
 }
 
 }  // namespace

@@ -677,6 +677,12 @@ TEST (JointMovedAway, NothingBehindAShortRunOrAClusteredPointMovedAway)
   // Points the static world or a moving cluster holds are not outliers.
   JointResult clustered = allStaticResult (scene.source, scene.target);
   EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, clustered), 0);
+  // Points an earlier step marked (removeClustersANearerClusterExplains ()) stay marked
+  // while they are outliers; one a later step clustered again does not.
+  JointResult earlier = two;
+  earlier.moved_away = {board[5], board[6], board[7]};
+  EXPECT_EQ (markPointsThatMovedAway (scene.source, scene.target, parameters, earlier), 2);
+  EXPECT_EQ (earlier.moved_away, (std::vector<int>{board[5], board[6]}));
   // Without a static world nothing tells where the points should be.
   JointResult no_static = withObjectUnmatched (scene.source, scene.target, scene.source_object, kBoard);
   no_static.static_cluster = -1;

@@ -44,7 +44,9 @@ struct JointResult
   /** source points in the outlier cluster, increasing. */
   std::vector<int> outliers;
   /** the outliers that moved away to where the target did not see them
-   *  (markPointsThatMovedAway ()), increasing: not the static world, their motion unknown. */
+   *  (markPointsThatMovedAway ()), or whose view in the target is another cluster's
+   *  (removeClustersANearerClusterExplains ()), increasing: not the static world, their
+   *  motion unknown. */
   std::vector<int> moved_away;
   /** clusters proposed by the initial CRF-Clustering. */
   int initial_clusters = 0;
@@ -129,7 +131,9 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
  *  Last, clusters whose matches mostly repeat target points the static world explains
- *  are removed (removeClustersTheStaticWorldExplains ()), and so are clusters with more
+ *  are removed (removeClustersTheStaticWorldExplains ()), and so are clusters whose
+ *  matches mostly repeat target points a cluster that moved less explains
+ *  (removeClustersANearerClusterExplains ()) and clusters with more
  *  points the target saw through under their motion than matched points
  *  (removeClustersTheTargetSeesThrough ()) and clusters the static motion puts on the
  *  target's outline (removeClustersOnTheStaticOutline ()); then objects the static motion puts where
@@ -192,6 +196,30 @@ associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& ta
  *  target point. */
 int
 removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
+                                      const matching::SegmentMotionParameters& parameters, JointResult& result);
+
+/** \brief Of two moving clusters that claim one view in the target, removes the one
+ *  that moved farther from the static motion: taking the moving clusters in order of
+ *  their mean displacement from the static motion (the points' distance between where
+ *  the two motions put them), a cluster is removed when more than half of its matched
+ *  points landed within their overlap radius (matching::overlapRadius () of its spacing
+ *  on the target scan) of a target point that a cluster earlier in that order, and
+ *  kept, is matched to. One surface seen in the target is one object's: in oncoming
+ *  traffic a car that drives out of view behind the sensor is matched onto the car
+ *  following it, which takes its place in the target. The removed cluster's points
+ *  become outliers (kNoMatch, kOutlierCluster); those of a cluster whose points the
+ *  static motion mostly (more than half) puts farther than their overlap radius from
+ *  every target point are marked as moved away (JointResult::moved_away): not the
+ *  static world, their motion unknown.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the overlap radius (the matcher's segment parameters)
+ *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \return the number of clusters removed (0 without a static world)
+ *  \throws std::invalid_argument when the result's sizes disagree with each other or
+ *  with the scans, a match is not a target point, or a scan holds a NaN point. */
+int
+removeClustersANearerClusterExplains (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result);
 
 /** \brief Removes every cluster but the static world that the target scan refutes: more
@@ -381,7 +409,8 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
  *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] parameters segmentation and breakpoint distance (the matcher's segment
  *             parameters)
- *  \param[in,out] result a joint result for these scans; its moved_away is replaced
+ *  \param[in,out] result a joint result for these scans; the runs found join those of
+ *  its moved_away that are still outliers
  *  \return the number of points marked (0 without a static world)
  *  \throws std::invalid_argument when the result's sizes disagree with the scans or a
  *          match or cluster is out of range. */

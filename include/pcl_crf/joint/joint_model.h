@@ -43,6 +43,10 @@ struct JointParameters
   /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;
+  /** true (default): of two moving clusters whose matches claim one target view, the one
+   *  that moved farther from the static motion becomes outliers
+   *  (removeClustersANearerClusterExplains ()). */
+  bool remove_clusters_a_nearer_cluster_explains = true;
   /** true (default): clusters with more points the target saw through under their
    *  motion than matched points become outliers (removeClustersTheTargetSeesThrough ()). */
   bool remove_clusters_the_target_sees_through = true;
