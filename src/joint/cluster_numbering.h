@@ -43,6 +43,10 @@ checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, c
 int
 removeClusters (const std::vector<bool>& removed, JointResult& result);
 
+/** Adds \a points to result.moved_away, which stays increasing and without repeats. */
+void
+markMovedAway (const std::vector<int>& points, JointResult& result);
+
 /** Whether source point \a i of \a result is in the static world or among the outliers
  *  (the points the free-space steps may give a cluster of their own). */
 inline bool

@@ -273,6 +273,15 @@ detail::numberLargestFirst (JointResult& result)
 }
 
 void
+detail::markMovedAway (const std::vector<int>& points, JointResult& result)
+{
+  std::vector<int>& moved_away = result.moved_away;
+  moved_away.insert (moved_away.end (), points.begin (), points.end ());
+  std::sort (moved_away.begin (), moved_away.end ());
+  moved_away.erase (std::unique (moved_away.begin (), moved_away.end ()), moved_away.end ());
+}
+
+void
 detail::checkResultClusters (const char* function, const JointResult& result)
 {
   const std::size_t n = result.source_cluster.size ();

@@ -78,9 +78,7 @@ detail::markPointsThatMovedAway (const ScanViews& views, JointResult& result)
       continue;  // no run of outliers long enough
     appendRuns (segment, seenLeaving (views, segment, T_static, result), min_points, result.moved_away);
   }
-  result.moved_away.insert (result.moved_away.end (), earlier.begin (), earlier.end ());
-  std::sort (result.moved_away.begin (), result.moved_away.end ());
-  result.moved_away.erase (std::unique (result.moved_away.begin (), result.moved_away.end ()), result.moved_away.end ());
+  markMovedAway (earlier, result);
   return static_cast<int> (result.moved_away.size ());
 }
 

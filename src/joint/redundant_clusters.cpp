@@ -197,9 +197,7 @@ removeClustersANearerClusterExplains (const Eigen::Matrix2Xd& source, const Eige
     return 0;
   const std::vector<int> moved_away = pointsTheStaticMotionLeavesUnexplained (source, target, parameters, result, removed);
   const int count = detail::removeClusters (removed, result);
-  result.moved_away.insert (result.moved_away.end (), moved_away.begin (), moved_away.end ());
-  std::sort (result.moved_away.begin (), result.moved_away.end ());
-  result.moved_away.erase (std::unique (result.moved_away.begin (), result.moved_away.end ()), result.moved_away.end ());
+  detail::markMovedAway (moved_away, result);
   return count;
 }
 
