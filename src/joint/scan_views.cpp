@@ -81,8 +81,16 @@ grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
   return grazed;
 }
 
+bool
+sawThrough (const SensorView& seen, const Eigen::Vector2d& point, SeenThrough test)
+{
+  return test == SeenThrough::Firmly ? matching::seesThroughFirmly (seen.profile, point, seen.breakpoint)
+                                     : matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint);
+}
+
 TargetPlacement
-placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views)
+placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views,
+               SeenThrough test)
 {
   TargetPlacement p{std::move (points), {}, {}, {}, {}};
   p.nearest = views.targetPoints ().search (p.points, 1);
@@ -92,7 +100,7 @@ placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared
     const Eigen::Vector2d point = p.points.col (k);
     p.in_view.push_back (!grazed[k] && matching::inFieldOfView (seen.profile, point));
     p.explained.push_back (p.nearest.squared_distances (0, k) <= radii_squared[k]);
-    p.seen_through.push_back (matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint));
+    p.seen_through.push_back (sawThrough (seen, point, test));
   }
   return p;
 }

@@ -98,6 +98,21 @@ private:
 std::vector<bool>
 grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle);
 
+/** Which of the target's beams say that it saw through a point placed in its frame. */
+enum class SeenThrough
+{
+  /** a return beyond it (matching::seesThroughToAReturn ()): a beam without a return
+   *  says nothing, real lasers drop returns where the scene is not free. */
+  ToAReturn,
+  /** matching::seesThroughFirmly (): a return beyond it, or beams without one that
+   *  are not beside the return of a surface whose edge they may have dropped. */
+  Firmly
+};
+
+/** Whether the sensor of \a seen saw through \a point (in its frame) by \a test. */
+bool
+sawThrough (const SensorView& seen, const Eigen::Vector2d& point, SeenThrough test);
+
 /** What the target scan says of points placed in its frame. */
 struct TargetPlacement
 {
@@ -110,15 +125,17 @@ struct TargetPlacement
   std::vector<bool> in_view;
   /** per point: a target point within its overlap radius. */
   std::vector<bool> explained;
-  /** per point: the target saw through it to a return farther away. */
+  /** per point: the target saw through it (SeenThrough, the test asked for). */
   std::vector<bool> seen_through;
 };
 
 /** \a points (consecutive points of one surface, in the segment's order, placed in the
  *  target frame) as the target sees them; \a radii_squared their squared overlap
- *  radii (squaredOverlapRadii ()). One batched nearest-point query. */
+ *  radii (squaredOverlapRadii ()), \a test which beams saw through them. One batched
+ *  nearest-point query. */
 TargetPlacement
-placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views);
+placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared, const ScanViews& views,
+               SeenThrough test = SeenThrough::ToAReturn);
 
 /** The squared overlap radius (matching::overlapRadius () of its spacing on the segment)
  *  of every source point of \a segment. */

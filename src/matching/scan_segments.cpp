@@ -147,6 +147,25 @@ segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index point
   return of;
 }
 
+int
+longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, double step)
+{
+  if (segment.begin < 0 || segment.end > points.cols () || segment.end <= segment.begin)
+    throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] segment [" + std::to_string (segment.begin) +
+                                 ", " + std::to_string (segment.end) + ") is not a run of the scan's " +
+                                 std::to_string (points.cols ()) + " points");
+  if (!(step > 0.0))
+    throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] the sensor's step must be positive, got " +
+                                 std::to_string (step));
+  long longest = 0;
+  for (int i = segment.begin; i + 1 < segment.end; ++i) {
+    const double dphi = bearingStep (std::atan2 (points (1, i), points (0, i)),
+                                     std::atan2 (points (1, i + 1), points (0, i + 1)));
+    longest = std::max (longest, std::lround (dphi / step) - 1);
+  }
+  return static_cast<int> (longest);
+}
+
 SegmentEnds
 objectEnds (const Eigen::Matrix2Xd& points, const ScanSegment& segment)
 {

@@ -569,13 +569,15 @@ TEST (JointSlidSegments, APlaceThatExplainsOnePointLessStillMakesTheSlideAmbiguo
 {
   // An eight-point post 2 m away goes to one of two posts. The wall has a gap at bearings
   // 69°-97° (x in [-1, 3] m at y = 8 m) where the second post, shorter, stands with no
-  // return behind it: aligned with its end, the post's last points land in the empty
-  // beams beside it, neither explained nor seen through.
+  // return behind it: aligned with its end, the post's last points land beside it, on
+  // bearings 75.5°-77.5° that a board 1 m away hides, neither explained nor seen through.
+  // (Without the board the target's empty beams there would have seen through them: the
+  // post is a surface the sensor returns from on every beam.)
   std::vector<int> source_object, target_object;
-  const Surface left{8.0, -20.0, -1.0, kWall}, right{8.0, 3.0, 20.0, kWall};
-  const Eigen::Matrix2Xd source = rayCast ({left, right, {2.0, 1.0, 1.2, kPost}}, source_object);
+  const Surface left{8.0, -20.0, -1.0, kWall}, right{8.0, 3.0, 20.0, kWall}, board{1.0, 0.222, 0.259, kWall};
+  const Eigen::Matrix2Xd source = rayCast ({left, right, board, {2.0, 1.0, 1.2, kPost}}, source_object);
   const auto targetWithSecondPostTo = [&] (double x_max) {
-    return rayCast ({left, right, {2.0, 1.5, 1.7, kPost}, {2.0, 0.3, x_max, kPost}}, target_object);
+    return rayCast ({left, right, board, {2.0, 1.5, 1.7, kPost}, {2.0, 0.3, x_max, kPost}}, target_object);
   };
   // 0.12 m long, the second post explains 7 of the 8 points where the first explains 8.
   const Eigen::Matrix2Xd one_less = targetWithSecondPostTo (0.42);
@@ -589,6 +591,66 @@ TEST (JointSlidSegments, APlaceThatExplainsOnePointLessStillMakesTheSlideAmbiguo
   const int post = clusterOf (source_object, kPost, slid);
   ASSERT_NE (post, slid.static_cluster);
   EXPECT_NEAR (slid.cluster_motions[post].translation ().x (), 0.5, 0.05);
+}
+
+/** Every \a keep-th point of \a object's in \a scan (and \a objects), the others dropped:
+ *  a surface the sensor returns from on one beam in \a keep. */
+Eigen::Matrix2Xd
+thinObject (const Eigen::Matrix2Xd& scan, std::vector<int>& objects, int object, int keep)
+{
+  std::vector<Eigen::Index> kept;
+  int seen = 0;
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+    if (objects[i] != object || seen++ % keep == 0)
+      kept.push_back (i);
+  Eigen::Matrix2Xd thinned (2, static_cast<Eigen::Index> (kept.size ()));
+  std::vector<int> kept_objects;
+  for (std::size_t k = 0; k < kept.size (); ++k) {
+    thinned.col (static_cast<Eigen::Index> (k)) = scan.col (kept[k]);
+    kept_objects.push_back (objects[kept[k]]);
+  }
+  objects = std::move (kept_objects);
+  return thinned;
+}
+
+TEST (JointSlidSegments, BeamsWithoutAReturnCountOnlyAgainstASurfaceTheSensorReturnsFromOnEveryBeam)
+{
+  // The truck of Alongside drives 1 m along itself with nothing behind it: walls far to
+  // the left and right (bearings 110°-158° and 8°-15°) bound the field of view, and the
+  // beams past the truck's trailing end in the target return nothing.
+  const std::vector<Surface> walls{{8.0, -20.0, -3.0, kWall}, {8.0, 30.0, 60.0, kWall}};
+  const auto scan = [&] (double truck_from, std::vector<int>& objects) {
+    std::vector<Surface> surfaces = walls;
+    surfaces.push_back ({2.0, truck_from, truck_from + 5.0, kTruck});
+    return rayCast (surfaces, objects);
+  };
+  std::vector<int> source_object, target_object;
+  const Eigen::Matrix2Xd source = scan (1.0, source_object), target = scan (2.0, target_object);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+
+  // Returned from on every beam: the beams without a return where the static motion
+  // puts the trailing end saw through it.
+  JointResult dense = allStaticResult (source, target);
+  ASSERT_EQ (separateSegmentsTheTargetSeesThrough (source, target, parameters, 2, dense), 1);
+  const int truck = clusterOf (source_object, kTruck, dense);
+  ASSERT_GE (truck, 0);
+  ASSERT_NE (truck, dense.static_cluster);
+  EXPECT_NEAR (dense.cluster_motions[truck].translation ().x (), 1.0, 0.17);  // a beam spacing at its end
+  EXPECT_NEAR (dense.cluster_motions[truck].translation ().y (), 0.0, 1e-9);
+
+  // Returned from on one beam in three (runs of two missing returns) in the source: a
+  // surface the sensor drops returns on, so the target's empty beams say nothing.
+  std::vector<int> sparse_object = source_object;
+  const Eigen::Matrix2Xd sparse_source = thinObject (source, sparse_object, kTruck, 3);
+  JointResult sparse = allStaticResult (sparse_source, target);
+  EXPECT_EQ (separateSegmentsTheTargetSeesThrough (sparse_source, target, parameters, 2, sparse), 0);
+  EXPECT_EQ (clusterOf (sparse_object, kTruck, sparse), sparse.static_cluster);
+  // One beam in two (single missing returns, as real scanners leave): still counted.
+  std::vector<int> halved_object = source_object;
+  const Eigen::Matrix2Xd halved_source = thinObject (source, halved_object, kTruck, 2);
+  JointResult halved = allStaticResult (halved_source, target);
+  ASSERT_EQ (separateSegmentsTheTargetSeesThrough (halved_source, target, parameters, 2, halved), 1);
+  EXPECT_NE (clusterOf (halved_object, kTruck, halved), halved.static_cluster);
 }
 
 TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)

@@ -313,6 +313,25 @@ TEST (MatchingSegments, ARunOfMoreMissingReturnsThanOneSurfaceDropsIsABreakpoint
              1u);
 }
 
+TEST (MatchingSegments, TheLongestMissingRunCountsTheBeamsWithoutAReturnBetweenAdjacentPoints)
+{
+  // A wall 2 m ahead with returns on −5°, −4°, −3°, −1°, 2°, 3° (1° beams): runs of
+  // 1 (−2°) and 2 (0°, 1°) missing returns.
+  std::vector<Eigen::Vector2d> points;
+  for (int degrees : {-5, -4, -3, -1, 2, 3})
+    points.emplace_back (2.0, 2.0 * std::tan (degrees * M_PI / 180.0));
+  const Eigen::Matrix2Xd scan = asColumns (points);
+  const double step = M_PI / 180.0;
+  EXPECT_EQ (m::longestMissingRun (scan, {0, 6}, step), 2);
+  EXPECT_EQ (m::longestMissingRun (scan, {0, 4}, step), 1);
+  EXPECT_EQ (m::longestMissingRun (scan, {0, 3}, step), 0);
+  EXPECT_EQ (m::longestMissingRun (scan, {4, 5}, step), 0);  // one point
+  EXPECT_EQ (m::longestMissingRun (scan, {0, 6}, 0.5 * step), 5);  // 0.5° beams: 3° apart
+  EXPECT_THROW (m::longestMissingRun (scan, {0, 7}, step), std::invalid_argument);
+  EXPECT_THROW (m::longestMissingRun (scan, {3, 3}, step), std::invalid_argument);
+  EXPECT_THROW (m::longestMissingRun (scan, {0, 6}, 0.0), std::invalid_argument);
+}
+
 /** A wall 10 m ahead (x = 10) on bearings −20° … 20°, one degree apart, whose returns on
  *  −1° … 1° are replaced by points at \a between [m] on those bearings, and whose
  *  returns from 2° on lie at x = \a far_x instead. */

@@ -60,6 +60,23 @@ segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double ran
 std::vector<int>
 segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points);
 
+/** \brief The longest run of beams without a return between consecutive points of
+ *  \a segment: round (Δφ / step) − 1 for each bearing difference Δφ, as segmentScan ()
+ *  counts missing returns; 0 when the sensor returned from every beam across it.
+ *  \param[in] points the scan in its own sensor frame, beam order [m]
+ *  \param[in] segment a run of its points
+ *  \param[in] step the sensor's angular step [rad] (RangeProfile::step)
+ *  \throws std::invalid_argument when the segment is not a run of the scan's points or
+ *          the step is not positive
+ *
+ *  \code
+ *  // a surface the sensor skipped more than single beams on
+ *  const bool drops = pcl_crf::matching::longestMissingRun (scan, segment, profile.step) > 1;
+ *  \endcode
+ */
+int
+longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, double step);
+
 /** \brief Per segment of segmentScan (..., BeamGaps::MissingReturns), the surface it
  *  belongs to (the index of the surface's first segment): a segment continues an
  *  earlier one hidden behind an occluder, when every point between the earlier one's
