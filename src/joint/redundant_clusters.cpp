@@ -107,8 +107,7 @@ pointsTheStaticMotionLeavesUnexplained (const Eigen::Matrix2Xd& source, const Ei
                                         const matching::SegmentMotionParameters& parameters,
                                         const JointResult& result, const std::vector<bool>& removed)
 {
-  KnnIndex target_points;
-  target_points.build (target);
+  const KnnIndex target_points (target);
   const Rigid2d& T_static = result.cluster_motions[result.static_cluster];
   std::vector<int> marked;
   for (std::size_t l = 0; l < removed.size (); ++l) {

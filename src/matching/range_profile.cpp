@@ -188,12 +188,10 @@ makeRangeProfile (const Eigen::Matrix2Xd& scan, const SensorInfo& sensor)
 BreakpointDistance
 breakpointDistance (const RangeProfile& profile, double breakpoint_angle, double range_noise)
 {
-  const double step = profile.step;
   BreakpointDistance distance;
-  distance.slope = breakpoint_angle > step ? std::sin (step) / std::sin (breakpoint_angle - step)
-                                           : std::numeric_limits<double>::infinity ();
-  distance.offset = 3.0 * range_noise;
   distance.breakpoint_angle = breakpoint_angle;
+  distance.slope = distance.slopeAcross (profile.step);
+  distance.offset = 3.0 * range_noise;
   return distance;
 }
 

@@ -45,6 +45,14 @@ typicalStep (const std::vector<double>& bearings)
   return *middle;
 }
 
+/** The beams without a return between two returns \a dphi apart in bearing, for a
+ *  sensor of angular step \a step: round (Δφ / step) − 1. */
+long
+missingReturns (double dphi, double step)
+{
+  return std::lround (dphi / step) - 1;
+}
+
 /** Adaptive breakpoint test between consecutive points p, q, \a dphi apart in bearing
  *  (Borges & Aldon, 2004): ||q − p|| > k r sin Δφ / sin(λ − Δφ) + 3σ. Δφ = dphi and
  *  k = 1, unless the gap spans missing returns (\a step > 0, the sensor's step, and
@@ -58,7 +66,7 @@ isBreakpoint (const Eigen::Vector2d& p, const Eigen::Vector2d& q, double dphi, d
     return true;
   const double range = std::min (p.norm (), q.norm ());
   const bool missing_returns = step > 0.0 && step < breakpoint_angle && dphi > 1.5 * step;
-  if (missing_returns && max_missing_returns >= 0 && std::lround (dphi / step) - 1 > max_missing_returns)
+  if (missing_returns && max_missing_returns >= 0 && missingReturns (dphi, step) > max_missing_returns)
     return true;
   const double one_step = missing_returns ? step : dphi;
   const double steps = missing_returns ? dphi / step : 1.0;
@@ -158,10 +166,11 @@ longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, d
     throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] the sensor's step must be positive, got " +
                                  std::to_string (step));
   long longest = 0;
-  for (int i = segment.begin; i + 1 < segment.end; ++i) {
-    const double dphi = bearingStep (std::atan2 (points (1, i), points (0, i)),
-                                     std::atan2 (points (1, i + 1), points (0, i + 1)));
-    longest = std::max (longest, std::lround (dphi / step) - 1);
+  double bearing = std::atan2 (points (1, segment.begin), points (0, segment.begin));
+  for (int i = segment.begin + 1; i < segment.end; ++i) {
+    const double next = std::atan2 (points (1, i), points (0, i));
+    longest = std::max (longest, missingReturns (bearingStep (bearing, next), step));
+    bearing = next;
   }
   return static_cast<int> (longest);
 }
