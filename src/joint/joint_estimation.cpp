@@ -194,6 +194,10 @@ estimateAtScanResolution (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   const matching::MotionGuess guess = matching::MotionGuess::fromOdometry (odometry);
   AssociationStage stage = firstAssociationPass (source, prepared, guess, model.matcher);
   LadderStart start = initialClusters (source, target, stage, model, parameters.initial_clustering, odometry);
+  if (parameters.add_segment_motion_hypotheses)
+    addSegmentMotionHypotheses (source, prepared.index.points, stage.T_first,
+                                matching::limitToInterval (model.matcher.parameters, guess.interval).candidates.segments,
+                                start);
   jointPass (stage, prepared, guess, model.matcher, start);
   const crf::ChainPotentials chain = associationPotentials (stage, prepared, model);
   const LadderGeometry geometry =
@@ -371,23 +375,32 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   JointResult result;
-  if (!thinned.isThinned (source, target))
-    result = estimateAtScanResolution (source, target, odometry, model, parameters).result;
-  else {
+  JointResult ladder;  // the ladder's clusters and motions over every source point
+  if (!thinned.isThinned (source, target)) {
+    ScanResolutionEstimate full = estimateAtScanResolution (source, target, odometry, model, parameters);
+    result = std::move (full.result);
+    ladder = std::move (full.ladder);
+  } else {
     ScanResolutionEstimate coarse =
         estimateAtScanResolution (thinned.source.points, thinned.target.points, odometry, model, parameters);
     result = std::move (coarse.result);  // the final clusters and motions, lifted below
     result.source_match = liftedMatches (coarse.ladder, source, target, thinned);
     result.source_cluster = matching::liftLabels (thinned.anchors, result.source_cluster);
     numberLargestFirst (result);
+    ladder = std::move (coarse.ladder);
+    ladder.source_cluster = matching::liftLabels (thinned.anchors, ladder.source_cluster);
+    ladder.source_match = result.source_match;
   }
   const matching::SegmentMotionParameters segments =
       matching::limitToInterval (model.matcher.parameters.candidates.segments, odometry.interval);
+  const detail::ScanViews views (source, target, segments, parameters.sensor);  // shared by the steps below
+  if (parameters.keep_ladder_clusters_the_final_clustering_merges)
+    detail::keepLadderClustersTheFinalClusteringMerged (views, ladder, segments.min_segment_points * thinned.source.factor,
+                                                        result);
   if (parameters.remove_clusters_the_static_world_explains)
     removeClustersTheStaticWorldExplains (target, segments, result);
   if (parameters.remove_clusters_a_nearer_cluster_explains)
     removeClustersANearerClusterExplains (source, target, segments, result);
-  const detail::ScanViews views (source, target, segments, parameters.sensor);  // shared by the steps below
   if (parameters.remove_clusters_the_target_sees_through)
     detail::removeClustersTheTargetSeesThrough (views, result);
   if (parameters.remove_clusters_on_the_static_outline)

@@ -168,6 +168,12 @@ extendMovingClustersOverTheirSurfaces (const ScanViews& views, JointResult& resu
 int
 markPointsThatMovedAway (const ScanViews& views, JointResult& result);
 
+/** keepLadderClustersTheFinalClusteringMerged () with \a min_points for min_segment_points
+ *  (estimateJoint counts at the model's resolution: k times as many on scans thinned by k). */
+int
+keepLadderClustersTheFinalClusteringMerged (const ScanViews& views, const JointResult& ladder, int min_points,
+                                            JointResult& result);
+
 }  // namespace detail
 }  // namespace joint
 }  // namespace pcl_crf

@@ -100,6 +100,30 @@ initialClusters (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                  const JointModel& model, const clustering::CrfClusteringParameters& parameters,
                  const Odometry& odometry);
 
+/** \brief Motion hypotheses the initial clustering missed: an object that moved a little
+ *  (a few centimetres near the sensor) gets pass 1's associations under the static
+ *  motion, each a beam or two off its true target point, and CRF-Clustering fits them
+ *  into the static world's cluster. So every source segment (matching::segmentScan ())
+ *  with at least min_segment_points points in the static world's cluster (the one whose
+ *  motion is \a T_static) is tested: when the static motion puts fewer than half of those
+ *  points within their overlap radius (matching::overlapRadius () of their spacing on
+ *  the segment) of a target point, and point-to-point ICP of them from T_static (nearest
+ *  target points within overlap_radius, closed-form fits, eq. 6) puts more than half
+ *  there, they start the ladder as a new cluster of the ICP's motion. The ladder then
+ *  weighs it against the others like any initial cluster.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target_points kd-tree over the target scan [m, target frame]
+ *  \param[in] T_static the static world's initial motion (initialClusters () gives it
+ *  stage.T_first)
+ *  \param[in] parameters the breakpoint angle, range noise, overlap radius and
+ *  min_segment_points (the matcher's segment parameters)
+ *  \param[in,out] start the initial clusters; the outlier cluster is renumbered after the new ones
+ *  \return the number of clusters added
+ *  \throws std::invalid_argument when \a start has not one cluster per source point. */
+int
+addSegmentMotionHypotheses (const Eigen::Matrix2Xd& source, const KnnIndex& target_points, const Rigid2d& T_static,
+                            const matching::SegmentMotionParameters& parameters, LadderStart& start);
+
 /** \brief The joint pass (fills stage.pass, stage.scores and start.association): the
  *  candidates under pass 1's motion, where every point of a cluster that moves
  *  relative to it takes that cluster's motion as its motion hypothesis (so its
@@ -130,6 +154,10 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  robustly again: the ladder's hard refits let clusters whose motions differ by
  *  little collapse into one. On scans thinned to the training resolution the clusters
  *  are lifted to every point and the associations taken under the ladder's motions.
+ *  (Before the ladder, source segments the static motion leaves unexplained and ICP
+ *  explains join the initial clusters, addSegmentMotionHypotheses (); after the final
+ *  clustering, the ladder's moving clusters it merged into the static world where the
+ *  data say they moved are kept, keepLadderClustersTheFinalClusteringMerged ().)
  *  Last, clusters whose matches mostly repeat target points the static world explains
  *  are removed (removeClustersTheStaticWorldExplains ()), and so are clusters whose
  *  matches mostly repeat target points a cluster that moved less explains
@@ -177,6 +205,31 @@ void
 associateUnderClusterMotions (const Eigen::Matrix2Xd& source, const KnnIndex& target_points,
                               const std::vector<int>& points, const std::vector<int>& cluster,
                               const std::vector<Rigid2d>& motions, std::vector<int>& source_match);
+
+/** \brief Gives back to the ladder's moving clusters the points the final CRF-Clustering
+ *  merged into the static world, where the data say they moved. The final clustering
+ *  starts from an over-segmentation of the scan, and a small object's points then see
+ *  many near copies of the static world's motion, whose summed probability makes the
+ *  object's own cluster look ambiguous (N_eff, eq. 8), so that it is merged. For every
+ *  source segment (detail::ScanViews::sourceSegments ()) and moving cluster l of
+ *  \a ladder: the segment's points in \a result's static world are all in l, they are
+ *  more than half of the segment and at least min_segment_points, and of them, among
+ *  those both motions place in the target's view (detail::placeInTarget ()), at least
+ *  min_segment_points, the static motion explains fewer than half and l's motion more
+ *  than half (a target point within their overlap radius). Then they become a cluster
+ *  of l's motion, keeping their matches (the final clustering does not change them).
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the segments' and overlap radius' settings (the matcher's segment parameters)
+ *  \param[in] ladder the ladder's clusters and motions over \a source
+ *  \param[in,out] result the final clusters over \a source (renumbered largest first when one is added)
+ *  \return the number of clusters added
+ *  \throws std::invalid_argument when the results' sizes disagree with each other or with
+ *  the scans, or a match is not a target point. */
+int
+keepLadderClustersTheFinalClusteringMerged (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                            const matching::SegmentMotionParameters& parameters,
+                                            const JointResult& ladder, JointResult& result);
 
 /** \brief Removes every cluster but the static world most of whose matched points (more
  *  than half) landed on target points the static world already explains: each lies

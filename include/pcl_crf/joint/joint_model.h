@@ -40,6 +40,16 @@ struct JointParameters
    *  eq. 8, on the clustering chain's beliefs) exceeds this is merged into the others;
    *  > 1, default 1.7. */
   double max_average_neff = 1.7;
+  /** true (default): every source segment of the static world's initial cluster that the
+   *  static motion leaves mostly unexplained, and that ICP on its nearest target points
+   *  explains mostly, starts the ladder as a cluster of that motion
+   *  (addSegmentMotionHypotheses ()). */
+  bool add_segment_motion_hypotheses = true;
+  /** true (default): a moving cluster of the ladder that the final CRF-Clustering put into
+   *  the static world, holding every static point of its source segment, stays a cluster
+   *  where the static motion explains fewer than half of its points in the target's view
+   *  and its own motion more than half (keepLadderClustersTheFinalClusteringMerged ()). */
+  bool keep_ladder_clusters_the_final_clustering_merges = true;
   /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;
