@@ -47,6 +47,16 @@ removeClusters (const std::vector<bool>& removed, JointResult& result);
 void
 markMovedAway (const std::vector<int>& points, JointResult& result);
 
+/** The points \a indices of \a scan moved by T, as columns in that order. */
+inline Eigen::Matrix2Xd
+movedPoints (const Eigen::Matrix2Xd& scan, const std::vector<int>& indices, const Rigid2d& T)
+{
+  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (indices.size ()));
+  for (std::size_t k = 0; k < indices.size (); ++k)
+    moved.col (static_cast<Eigen::Index> (k)) = T * scan.col (indices[k]);
+  return moved;
+}
+
 /** Whether source point \a i of \a result is in the static world or among the outliers
  *  (the points the free-space steps may give a cluster of their own). */
 inline bool

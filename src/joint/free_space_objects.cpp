@@ -85,16 +85,6 @@ completeScene (FreeSpaceScene& scene)
     }
 }
 
-/** The source points \a points moved by T, as columns. */
-Eigen::Matrix2Xd
-movedPoints (const FreeSpaceScene& scene, const std::vector<int>& points, const Rigid2d& T)
-{
-  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (points.size ()));
-  for (std::size_t k = 0; k < points.size (); ++k)
-    moved.col (static_cast<Eigen::Index> (k)) = T * scene.source.col (points[k]);
-  return moved;
-}
-
 /** No limit on a count of points seen through. */
 constexpr int kNoLimit = std::numeric_limits<int>::max ();
 
@@ -149,7 +139,7 @@ landedTargetPoints (const FreeSpaceScene& scene, const std::vector<int>& points,
   std::vector<int> landed (points.size (), -1);
   if (points.empty ())
     return landed;
-  const KnnIndex::Result nearest = scene.views.targetPoints ().search (movedPoints (scene, points, T), 1);  // one batch
+  const KnnIndex::Result nearest = scene.views.targetPoints ().search (detail::movedPoints (scene.source, points, T), 1);  // one batch
   for (std::size_t k = 0; k < points.size (); ++k) {
     const auto column = static_cast<Eigen::Index> (k);
     const int j = nearest.indices (0, column);

@@ -117,10 +117,8 @@ pointsTheStaticMotionLeavesUnexplained (const Eigen::Matrix2Xd& source, const Ei
     for (std::size_t i = 0; i < result.source_cluster.size (); ++i)
       if (result.source_cluster[i] == static_cast<int> (l))
         points.push_back (static_cast<int> (i));
-    Eigen::Matrix2Xd at_static (2, static_cast<Eigen::Index> (points.size ()));
-    for (std::size_t k = 0; k < points.size (); ++k)
-      at_static.col (static_cast<Eigen::Index> (k)) = T_static * source.col (points[k]);
-    const KnnIndex::Result nearest = target_points.search (at_static, 1);  // one batched query
+    const KnnIndex::Result nearest =
+        target_points.search (detail::movedPoints (source, points, T_static), 1);  // one batched query
     int explained = 0;
     for (std::size_t k = 0; k < points.size (); ++k) {
       const double radius =

@@ -8,6 +8,7 @@
 #include "cluster_numbering.h"
 #include "scan_views.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -29,16 +30,6 @@ fail (const char* function, const std::string& what)
   throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
 }
 
-/** The source points \a members moved by T, as columns. */
-Eigen::Matrix2Xd
-movedMembers (const Eigen::Matrix2Xd& source, const std::vector<int>& members, const Rigid2d& T)
-{
-  Eigen::Matrix2Xd moved (2, static_cast<Eigen::Index> (members.size ()));
-  for (std::size_t k = 0; k < members.size (); ++k)
-    moved.col (static_cast<Eigen::Index> (k)) = T * source.col (members[k]);
-  return moved;
-}
-
 /** Point-to-point ICP of \a members from T: each round pairs every point with its
  *  nearest target point (one batched query), drops the pairs farther apart than
  *  \a gate, and refits the motion in closed form (eq. 6). */
@@ -48,7 +39,7 @@ icpOnNearestPoints (const Eigen::Matrix2Xd& source, const std::vector<int>& memb
 {
   const Eigen::MatrixXd& target = target_points.points ();
   for (int round = 0; round < kMaxIcpRounds; ++round) {
-    const KnnIndex::Result nearest = target_points.search (movedMembers (source, members, T), 1);
+    const KnnIndex::Result nearest = target_points.search (detail::movedPoints (source, members, T), 1);
     RigidFitAccumulator fit;
     for (std::size_t k = 0; k < members.size (); ++k) {
       const auto column = static_cast<Eigen::Index> (k);
@@ -73,7 +64,7 @@ explainedByNearest (const Eigen::Matrix2Xd& source, const matching::ScanSegment&
                     const std::vector<int>& members, const KnnIndex& target_points, const Rigid2d& T,
                     const matching::SegmentMotionParameters& parameters)
 {
-  const KnnIndex::Result nearest = target_points.search (movedMembers (source, members, T), 1);
+  const KnnIndex::Result nearest = target_points.search (detail::movedPoints (source, members, T), 1);
   int explained = 0;
   for (std::size_t k = 0; k < members.size (); ++k) {
     const double radius = matching::overlapRadius (
@@ -108,9 +99,9 @@ movedAsTheLadderSays (const detail::ScanViews& views, const matching::ScanSegmen
   std::vector<double> radii_squared;
   for (int i : members)
     radii_squared.push_back (segment_radii[i - segment.begin]);
-  const detail::TargetPlacement by_static = detail::placeInTarget (movedMembers (source, members, T_static),
+  const detail::TargetPlacement by_static = detail::placeInTarget (detail::movedPoints (source, members, T_static),
                                                                    radii_squared, views);
-  const detail::TargetPlacement by_ladder = detail::placeInTarget (movedMembers (source, members, T_ladder),
+  const detail::TargetPlacement by_ladder = detail::placeInTarget (detail::movedPoints (source, members, T_ladder),
                                                                    radii_squared, views);
   const detail::SensorView& target_view = views.targetView ();
   int in_view = 0, static_explains = 0, ladder_explains = 0;
@@ -179,27 +170,22 @@ detail::keepLadderClustersTheFinalClusteringMerged (const ScanViews& views, cons
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   std::vector<Rigid2d> kept_motions;
   std::vector<std::vector<int>> kept_members;
-  for (const matching::ScanSegment& segment : views.sourceSegments ())
-    for (int l = 0; l < static_cast<int> (ladder.cluster_motions.size ()); ++l) {
-      if (l == ladder.static_cluster)
-        continue;
-      std::vector<int> members;  // the segment's points in ladder cluster l and the final static world
-      bool holds_every_static_point = true;
-      for (int i = segment.begin; i < segment.end; ++i) {
-        if (result.source_cluster[i] != result.static_cluster)
-          continue;
-        if (ladder.source_cluster[i] == l)
-          members.push_back (i);
-        else
-          holds_every_static_point = false;
-      }
-      if (!holds_every_static_point || static_cast<int> (members.size ()) < min_points ||
-          2 * static_cast<int> (members.size ()) <= segment.size () ||
-          !movedAsTheLadderSays (views, segment, members, T_static, ladder.cluster_motions[l], min_points))
-        continue;
-      kept_motions.push_back (ladder.cluster_motions[l]);
-      kept_members.push_back (std::move (members));
-    }
+  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
+    std::vector<int> members;  // the segment's points in the final static world
+    for (int i = segment.begin; i < segment.end; ++i)
+      if (result.source_cluster[i] == result.static_cluster)
+        members.push_back (i);
+    if (static_cast<int> (members.size ()) < min_points || 2 * static_cast<int> (members.size ()) <= segment.size ())
+      continue;
+    // They must all be in one moving cluster of the ladder.
+    const int l = ladder.source_cluster[members.front ()];
+    if (l < 0 || l == ladder.static_cluster ||
+        std::any_of (members.begin (), members.end (), [&ladder, l] (int i) { return ladder.source_cluster[i] != l; }) ||
+        !movedAsTheLadderSays (views, segment, members, T_static, ladder.cluster_motions[l], min_points))
+      continue;
+    kept_motions.push_back (ladder.cluster_motions[l]);
+    kept_members.push_back (std::move (members));
+  }
   for (std::size_t k = 0; k < kept_members.size (); ++k) {
     for (int i : kept_members[k])
       result.source_cluster[i] = static_cast<int> (result.cluster_motions.size ());
