@@ -414,6 +414,9 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
         views, parameters.segment_min_points_seen_through * thinned.source.factor, result);
   if (parameters.separate_points_the_target_sees_through)
     detail::separatePointsTheTargetSeesThrough (views, result);
+  if (parameters.separate_segments_that_moved_slightly)
+    detail::separateSegmentsThatMovedSlightly (views, parameters.slight_motion,
+                                               segments.min_segment_points * thinned.source.factor, result);
   if (parameters.merge_adjacent_clusters_that_move_alike)
     detail::mergeAdjacentClustersThatMoveAlike (views, result);
   if (parameters.extend_moving_clusters_over_their_surfaces)

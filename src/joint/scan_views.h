@@ -143,6 +143,14 @@ std::vector<double>
 squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
                      const matching::SegmentMotionParameters& parameters);
 
+/** Point-to-point ICP of the source points \a members from T: each round pairs every
+ *  point with its nearest target point (one batched query), drops the pairs farther
+ *  apart than \a gate, and refits the motion in closed form (eq. 6); at most 20 rounds,
+ *  until no entry of the motion's matrix changes by 1e-6. */
+Rigid2d
+icpOnNearestPoints (const Eigen::Matrix2Xd& source, const std::vector<int>& members, const KnnIndex& target_points,
+                    Rigid2d T, double gate);
+
 /** The free-space steps of joint_estimation.h on shared views (estimateJoint runs them
  *  in turn on one pair); the public functions build their own. */
 int
@@ -167,6 +175,11 @@ extendMovingClustersOverTheirSurfaces (const ScanViews& views, JointResult& resu
 
 int
 markPointsThatMovedAway (const ScanViews& views, JointResult& result);
+
+/** separateSegmentsThatMovedSlightly () on shared views. */
+int
+separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightMotionTest& test, int min_points,
+                                   JointResult& result);
 
 /** keepLadderClustersTheFinalClusteringMerged () with \a min_points for min_segment_points
  *  (estimateJoint counts at the model's resolution: k times as many on scans thinned by k). */

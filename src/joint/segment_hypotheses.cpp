@@ -30,12 +30,11 @@ fail (const char* function, const std::string& what)
   throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
 }
 
-/** Point-to-point ICP of \a members from T: each round pairs every point with its
- *  nearest target point (one batched query), drops the pairs farther apart than
- *  \a gate, and refits the motion in closed form (eq. 6). */
+}  // namespace
+
 Rigid2d
-icpOnNearestPoints (const Eigen::Matrix2Xd& source, const std::vector<int>& members, const KnnIndex& target_points,
-                    Rigid2d T, double gate)
+detail::icpOnNearestPoints (const Eigen::Matrix2Xd& source, const std::vector<int>& members,
+                            const KnnIndex& target_points, Rigid2d T, double gate)
 {
   const Eigen::MatrixXd& target = target_points.points ();
   for (int round = 0; round < kMaxIcpRounds; ++round) {
@@ -56,6 +55,8 @@ icpOnNearestPoints (const Eigen::Matrix2Xd& source, const std::vector<int>& memb
   }
   return T;
 }
+
+namespace {
 
 /** How many of \a members (points of \a segment) T puts within their overlap radius
  *  (matching::overlapRadius () of their spacing on the segment) of a target point. */
@@ -139,7 +140,7 @@ addSegmentMotionHypotheses (const Eigen::Matrix2Xd& source, const KnnIndex& targ
     if (n < parameters.min_segment_points ||
         2 * explainedByNearest (source, segment, members, target_points, T_static, parameters) >= n)
       continue;
-    const Rigid2d T = icpOnNearestPoints (source, members, target_points, T_static, parameters.overlap_radius);
+    const Rigid2d T = detail::icpOnNearestPoints (source, members, target_points, T_static, parameters.overlap_radius);
     if (2 * explainedByNearest (source, segment, members, target_points, T, parameters) > n)
       hypotheses.emplace_back (std::move (members), T);
   }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "box_between_walls.h"
 #include "synthetic_scene.h"
 
 #include <algorithm>
@@ -19,39 +20,14 @@ using pcl_crf::joint::JointResult;
 using pcl_crf::joint::LadderStart;
 using pcl_crf::joint::addSegmentMotionHypotheses;
 using pcl_crf::joint::keepLadderClustersTheFinalClusteringMerged;
+using pcl_crf::test::boxBetweenWalls;
+using pcl_crf::test::kBoxBegin;
+using pcl_crf::test::kBoxEnd;
+using pcl_crf::test::kBoxPoints;
+using pcl_crf::test::kPoints;
+using pcl_crf::test::kWallPoints;
+using pcl_crf::test::onBox;
 using pcl_crf::test::translation;
-
-constexpr int kWallPoints = 41;  // on each side
-constexpr int kBoxPoints = 21;
-constexpr int kBoxBegin = kWallPoints;
-constexpr int kBoxEnd = kWallPoints + kBoxPoints;
-constexpr int kPoints = 2 * kWallPoints + kBoxPoints;
-
-/** A small box 0.6 m ahead of the sensor (its face x = 0.6, y from −0.1 to 0.1, 1 cm
- *  apart: a 1/10-scale car's back) between two walls 6 m away (bearings −60° … −20° and
- *  20° … 60°, every degree), in beam order; the box moved by \a box_motion. */
-Eigen::Matrix2Xd
-boxBetweenWalls (const Rigid2d& box_motion = Rigid2d::Identity ())
-{
-  Eigen::Matrix2Xd points (2, kPoints);
-  const auto wall = [] (double degrees) {
-    const double bearing = degrees * M_PI / 180.0;
-    return Eigen::Vector2d (6.0 * std::cos (bearing), 6.0 * std::sin (bearing));
-  };
-  for (int k = 0; k < kWallPoints; ++k)
-    points.col (k) = wall (-60.0 + k);
-  for (int k = 0; k < kBoxPoints; ++k)
-    points.col (kBoxBegin + k) = box_motion * Eigen::Vector2d (0.6, -0.1 + 0.01 * k);
-  for (int k = 0; k < kWallPoints; ++k)
-    points.col (kBoxEnd + k) = wall (20.0 + k);
-  return points;
-}
-
-bool
-onBox (int i)
-{
-  return i >= kBoxBegin && i < kBoxEnd;
-}
 
 /** Every point in the static world's cluster (identity) but the first, an outlier. */
 LadderStart

@@ -170,7 +170,8 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  through get clusters of their own (separateSegmentsTheTargetSeesThrough ()), and so
  *  do points that moved out of where the static motion puts them, paired with points
  *  that moved in or with the object's other view hidden behind it
- *  (separatePointsTheTargetSeesThrough ()); then moving clusters that meet on one
+ *  (separatePointsTheTargetSeesThrough ()), and segments of the static world that
+ *  moved by less than their overlap radius (separateSegmentsThatMovedSlightly ()); then moving clusters that meet on one
  *  surface and move alike become one (mergeAdjacentClustersThatMoveAlike ()), and take
  *  the static points of their surface that their motion explains as well
  *  (extendMovingClustersOverTheirSurfaces ()); last, a
@@ -230,6 +231,47 @@ int
 keepLadderClustersTheFinalClusteringMerged (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                             const matching::SegmentMotionParameters& parameters,
                                             const JointResult& ladder, JointResult& result);
+
+/** \brief Separates the source segments of the static world that moved by less than
+ *  their overlap radius (a few centimetres near the sensor), which the steps that ask
+ *  whether a target point lies within that radius cannot tell from the static world.
+ *  For every source segment (detail::ScanViews::sourceSegments ()) with at least
+ *  \a min_points points in \a result's static world, point-to-point ICP of those points
+ *  from the static motion T_s (nearest target points within overlap_radius, eq. 6)
+ *  gives its own motion T. The evidence is the deviance of the static motion against T,
+ *  D = Σ_i (r_i(T_s)² − r_i(T)²) / σ_i², over the points both motions place in the
+ *  target's view (detail::placeInTarget ()) that T_s does not hide behind a target
+ *  return and does not place beyond the end of the target surface nearest to it (there
+ *  the target does not show the surface, so a residual says nothing of motion).
+ *  - r_i is the distance to the target's outline: to the nearer of the two pieces from
+ *    the nearest target point to its neighbours on its target segment, capped at
+ *    overlap_radius (a point that lands on nothing counts as landing that far).
+ *  - σ_i² = σ_r² + (along_beam_steps · ρ_i · Δφ)² + median_j r_j(T_s)² / 0.4549:
+ *    range_noise, the outline's uncertainty between beams ρ_i Δφ apart (ρ_i the point's
+ *    range, Δφ the target's beam step), and the static motion's own misfit, the median
+ *    squared residual of all the tested points under T_s scaled to a variance (0.4549
+ *    is the median of χ² with 1 degree of freedom), so that a pair whose static motion
+ *    fits loosely everywhere needs more evidence.
+ *  A segment with at least \a min_points such points, D ≥ test.min_deviance, and whose
+ *  motion T moves none of its points farther than overlap_radius from where T_s puts them
+ *  (the ICP's gate: a farther move is ICP drifting over a few points, not a slight
+ *  motion; larger motions are the free-space steps') becomes a cluster of motion T, and its matched points take the target point nearest to where
+ *  T puts them (associateUnderClusterMotions ()). estimateJoint runs this after the
+ *  free-space steps, which find larger motions with the target's help; ICP from the
+ *  static motion reaches only motions within overlap_radius.
+ *  \param[in] source source scan in beam order [m, source frame]
+ *  \param[in] target target scan in beam order [m, target frame]
+ *  \param[in] parameters the segments' and overlap radius' settings and range_noise (the matcher's segment parameters)
+ *  \param[in] test the least deviance and the along-beam uncertainty
+ *  \param[in] min_points the fewest points of a segment tested and of its evidence (≥ 1)
+ *  \param[in,out] result the clusters over \a source (renumbered largest first when one is added)
+ *  \return the number of clusters added
+ *  \throws std::invalid_argument when the result's sizes disagree with the scans, a match
+ *  is not a target point, \a test is out of range or \a min_points < 1. */
+int
+separateSegmentsThatMovedSlightly (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                   const matching::SegmentMotionParameters& parameters, const SlightMotionTest& test,
+                                   int min_points, JointResult& result);
 
 /** \brief Removes every cluster but the static world most of whose matched points (more
  *  than half) landed on target points the static world already explains: each lies

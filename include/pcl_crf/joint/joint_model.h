@@ -15,6 +15,24 @@
 namespace pcl_crf {
 namespace joint {
 
+/** \brief How separateSegmentsThatMovedSlightly () weighs the evidence that a source
+ *  segment moved by a few centimetres, less than its overlap radius. */
+struct SlightMotionTest
+{
+  /** the least deviance, Σ (r_static² − r_own²) / σ² over the segment's points in view,
+   *  that separates it (> 0). Under the static world's motion the deviance of a segment
+   *  whose own motion (3 parameters) was fitted to it follows χ² with 3 degrees of
+   *  freedom; default 32, which it exceeds with probability below 10⁻⁶, so that among
+   *  the tens of segments of thousands of pairs a static one is hardly ever separated. */
+  double min_deviance = 32.0;
+  /** the uncertainty of a residual along the surface, in beam steps of the target scan
+   *  (≥ 0): where neighbouring beams land ρ Δφ apart on a surface ρ away, its outline
+   *  between them is not known to better than a fraction of that, and the static
+   *  motion's rotation moves far points more; σ² grows by (along_beam_steps ρ Δφ)².
+   *  Default 0.5: half a beam spacing. */
+  double along_beam_steps = 0.5;
+};
+
 /** \brief Settings of joint estimation (the runtime ones; a model brings its learned parts). */
 struct JointParameters
 {
@@ -50,6 +68,13 @@ struct JointParameters
    *  where the static motion explains fewer than half of its points in the target's view
    *  and its own motion more than half (keepLadderClustersTheFinalClusteringMerged ()). */
   bool keep_ladder_clusters_the_final_clustering_merges = true;
+  /** true (default): a segment of the static world that ICP of its points explains
+   *  better than the static motion, by more than the pair's residuals and the beams'
+   *  spacing account for (slight_motion), becomes a cluster of its own
+   *  (separateSegmentsThatMovedSlightly ()). */
+  bool separate_segments_that_moved_slightly = true;
+  /** how separateSegmentsThatMovedSlightly () weighs a segment's evidence. */
+  SlightMotionTest slight_motion;
   /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
   bool remove_clusters_the_static_world_explains = true;

@@ -1,0 +1,227 @@
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/range_profile.h>
+
+#include "cluster_numbering.h"
+#include "scan_views.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pcl_crf {
+namespace joint {
+
+namespace {
+
+/** The median of χ² with one degree of freedom: a Gaussian residual's squared median
+ *  over its variance. */
+constexpr double kChiSquare1Median = 0.454936423119572;
+
+[[noreturn]] void
+fail (const std::string& what)
+{
+  throw std::invalid_argument ("[pcl_crf::joint::separateSegmentsThatMovedSlightly] " + what);
+}
+
+/** The target's outline: per target point, the begin and end of its segment. */
+struct TargetOutline
+{
+  std::vector<int> begin, end;
+
+  explicit TargetOutline (const detail::ScanViews& views)
+  {
+    const auto m = static_cast<int> (views.target ().cols ());
+    for (int j = 0; j < m; ++j) {  // a point on no segment is one of its own
+      begin.push_back (j);
+      end.push_back (j + 1);
+    }
+    for (const matching::ScanSegment& segment : views.targetSegments ())
+      for (int j = segment.begin; j < segment.end; ++j) {
+        begin[j] = segment.begin;
+        end[j] = segment.end;
+      }
+  }
+};
+
+/** Where a point placed in the target frame lies from the target's outline near target
+ *  point q: its distance to the nearer of the pieces from q to q's neighbours on its
+ *  segment (to q when it has none), and whether it lies beyond the segment's end (q is
+ *  its first or last point and the point projects outside it). */
+struct OutlineDistance
+{
+  double distance;
+  bool beyond_end;
+};
+
+OutlineDistance
+distanceToOutline (const Eigen::Vector2d& point, const Eigen::Matrix2Xd& target, const TargetOutline& outline, int q)
+{
+  const Eigen::Vector2d a = target.col (q);
+  OutlineDistance result{(point - a).norm (), q == outline.begin[q] || q == outline.end[q] - 1};
+  bool along_a_piece = false;
+  for (const int j : {q - 1, q + 1}) {
+    if (j < outline.begin[q] || j >= outline.end[q])
+      continue;
+    const Eigen::Vector2d piece = target.col (j) - a;
+    const double squared_length = piece.squaredNorm ();
+    if (squared_length == 0.0)
+      continue;
+    const double t = (point - a).dot (piece) / squared_length;
+    along_a_piece = along_a_piece || t > 0.0;
+    result.distance = std::min (result.distance, (point - (a + std::clamp (t, 0.0, 1.0) * piece)).norm ());
+  }
+  result.beyond_end = result.beyond_end && !along_a_piece;
+  return result;
+}
+
+/** One segment's evidence: its static points, their own motion, and per point in view
+ *  the squared residuals under both motions and the squared along-beam uncertainty. */
+struct SegmentEvidence
+{
+  std::vector<int> members;
+  Rigid2d motion;
+  /** the farthest the own motion moves a member from where the static motion puts it [m]. */
+  double largest_move = 0.0;
+  std::vector<double> static_squared, own_squared, along_squared;
+};
+
+/** The evidence of \a members (the static points of \a segment) for their own motion
+ *  (ICP from T_static), on the points both motions place in the target's view that
+ *  T_static neither hides behind a return nor places beyond a surface's end. */
+SegmentEvidence
+weighSegment (const detail::ScanViews& views, const TargetOutline& outline, const matching::ScanSegment& segment,
+              std::vector<int> members, const Rigid2d& T_static, double along_beam_steps)
+{
+  const Eigen::Matrix2Xd& source = views.source ();
+  const Eigen::Matrix2Xd& target = views.target ();
+  const double cap = views.parameters ().overlap_radius;
+  const detail::SensorView& seen = views.targetView ();
+  SegmentEvidence evidence{std::move (members), Rigid2d::Identity (), 0.0, {}, {}, {}};
+  evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
+  const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
+  std::vector<double> radii_squared;
+  for (const int i : evidence.members)
+    radii_squared.push_back (segment_radii[i - segment.begin]);
+  const detail::TargetPlacement by_static =
+      detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), radii_squared, views);
+  const detail::TargetPlacement by_own =
+      detail::placeInTarget (detail::movedPoints (source, evidence.members, evidence.motion), radii_squared, views);
+  for (std::size_t k = 0; k < evidence.members.size (); ++k) {
+    const auto c = static_cast<Eigen::Index> (k);
+    const Eigen::Vector2d at_static = by_static.points.col (c);
+    evidence.largest_move = std::max (evidence.largest_move, (by_own.points.col (c) - at_static).norm ());
+    if (!by_static.in_view[k] || !by_own.in_view[k] ||
+        matching::hiddenBehindAReturn (seen.profile, at_static, seen.breakpoint))
+      continue;
+    const OutlineDistance r_static =
+        distanceToOutline (at_static, target, outline, static_cast<int> (by_static.nearest.indices (0, c)));
+    if (r_static.beyond_end)
+      continue;
+    const OutlineDistance r_own =
+        distanceToOutline (by_own.points.col (c), target, outline, static_cast<int> (by_own.nearest.indices (0, c)));
+    const double along = along_beam_steps * seen.profile.step * at_static.norm ();
+    evidence.static_squared.push_back (std::pow (std::min (cap, r_static.distance), 2));
+    evidence.own_squared.push_back (std::pow (std::min (cap, r_own.distance), 2));
+    evidence.along_squared.push_back (along * along);
+  }
+  return evidence;
+}
+
+/** The static motion's own misfit as a variance: the median squared residual under it
+ *  of every point weighed, over the median of χ²₁ (0 when none was weighed). */
+double
+staticMisfitVariance (const std::vector<SegmentEvidence>& weighed)
+{
+  std::vector<double> squared;
+  for (const SegmentEvidence& evidence : weighed)
+    squared.insert (squared.end (), evidence.static_squared.begin (), evidence.static_squared.end ());
+  if (squared.empty ())
+    return 0.0;
+  const auto middle = squared.begin () + static_cast<std::ptrdiff_t> (squared.size () / 2);
+  std::nth_element (squared.begin (), middle, squared.end ());
+  return *middle / kChiSquare1Median;
+}
+
+/** The deviance D = Σ_i (r_i(T_s)² − r_i(T)²) / σ_i² of the static motion against the
+ *  segment's own, σ_i² = σ_r² + along_i² + \a misfit_variance. */
+double
+deviance (const SegmentEvidence& evidence, double range_noise, double misfit_variance)
+{
+  double sum = 0.0;
+  for (std::size_t k = 0; k < evidence.static_squared.size (); ++k)
+    sum += (evidence.static_squared[k] - evidence.own_squared[k]) /
+           (range_noise * range_noise + evidence.along_squared[k] + misfit_variance);
+  return sum;
+}
+
+/** The segment's static points become a cluster of their own motion, and the matched
+ *  ones take the target point nearest to where it puts them. */
+void
+addClusterOf (const SegmentEvidence& evidence, const detail::ScanViews& views, JointResult& result)
+{
+  for (const int i : evidence.members)
+    result.source_cluster[i] = static_cast<int> (result.cluster_motions.size ());
+  result.cluster_motions.push_back (evidence.motion);
+  std::vector<int> matched;
+  for (const int i : evidence.members)
+    if (result.source_match[i] != kNoMatch)
+      matched.push_back (i);
+  associateUnderClusterMotions (views.source (), views.targetPoints (), matched, result.source_cluster,
+                                result.cluster_motions, result.source_match);
+}
+
+}  // namespace
+
+int
+detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightMotionTest& test, int min_points,
+                                           JointResult& result)
+{
+  checkResultAgainstScans ("separateSegmentsThatMovedSlightly", views.source (), views.target (), result);
+  if (!(test.min_deviance > 0.0) || !std::isfinite (test.min_deviance))
+    fail ("min_deviance must be > 0, got " + std::to_string (test.min_deviance));
+  if (!(test.along_beam_steps >= 0.0) || !std::isfinite (test.along_beam_steps))
+    fail ("along_beam_steps must be >= 0, got " + std::to_string (test.along_beam_steps));
+  if (min_points < 1)
+    fail ("min_points must be >= 1, got " + std::to_string (min_points));
+  if (!canSeparateFromStaticWorld (views.source (), views.target (), result))
+    return 0;
+  const Rigid2d T_static = result.cluster_motions[result.static_cluster];
+  const TargetOutline outline (views);
+  std::vector<SegmentEvidence> weighed;
+  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
+    std::vector<int> members;  // the segment's points in the static world
+    for (int i = segment.begin; i < segment.end; ++i)
+      if (result.source_cluster[i] == result.static_cluster)
+        members.push_back (i);
+    if (static_cast<int> (members.size ()) >= min_points)
+      weighed.push_back (weighSegment (views, outline, segment, std::move (members), T_static, test.along_beam_steps));
+  }
+  const double misfit_variance = staticMisfitVariance (weighed);
+  int separated = 0;
+  for (const SegmentEvidence& evidence : weighed) {
+    if (static_cast<int> (evidence.static_squared.size ()) < min_points ||
+        evidence.largest_move > views.parameters ().overlap_radius ||
+        deviance (evidence, views.parameters ().range_noise, misfit_variance) < test.min_deviance)
+      continue;
+    addClusterOf (evidence, views, result);
+    ++separated;
+  }
+  if (separated > 0)
+    numberLargestFirst (result);
+  return separated;
+}
+
+int
+separateSegmentsThatMovedSlightly (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
+                                   const matching::SegmentMotionParameters& parameters, const SlightMotionTest& test,
+                                   int min_points, JointResult& result)
+{
+  return detail::separateSegmentsThatMovedSlightly (detail::ScanViews (source, target, parameters), test, min_points,
+                                                    result);
+}
+
+}  // namespace joint
+}  // namespace pcl_crf
