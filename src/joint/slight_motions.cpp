@@ -77,61 +77,84 @@ distanceToOutline (const Eigen::Vector2d& point, const Eigen::Matrix2Xd& target,
   return result;
 }
 
-/** One segment's evidence: its static points, their own motion, and per point in view
- *  the squared residuals under both motions and the squared along-beam uncertainty. */
+/** One segment's evidence: its static points, and for those T_static places in the
+ *  target's view, neither hidden behind a return nor beyond a surface's end, their
+ *  squared residual under T_static and squared along-beam uncertainty; then their own
+ *  motion (ICP from T_static), and per point whether it too places them in view and their
+ *  squared residual under it. */
 struct SegmentEvidence
 {
   std::vector<int> members;
-  Rigid2d motion;
+  /** per member: where T_static puts it, and whether it counts (seen as above). */
+  detail::TargetPlacement by_static;
+  std::vector<int> counted;
+  std::vector<double> static_squared, along_squared;
+  Rigid2d motion = Rigid2d::Identity ();
   /** the farthest the own motion moves a member from where the static motion puts it [m]. */
   double largest_move = 0.0;
-  std::vector<double> static_squared, own_squared, along_squared;
+  /** per counted point: whether the own motion places it in view, and its squared residual. */
+  std::vector<bool> own_in_view;
+  std::vector<double> own_squared;
 };
 
-/** The evidence of \a members (the static points of \a segment) for their own motion
- *  (ICP from T_static), on the points both motions place in the target's view that
- *  T_static neither hides behind a return nor places beyond a surface's end. */
+/** The static half of the evidence of \a members (the static points of \a segment). */
 SegmentEvidence
-weighSegment (const detail::ScanViews& views, const TargetOutline& outline, const matching::ScanSegment& segment,
-              std::vector<int> members, const Rigid2d& T_static, double along_beam_steps)
+weighUnderStaticMotion (const detail::ScanViews& views, const TargetOutline& outline,
+                        const matching::ScanSegment& segment, std::vector<int> members, const Rigid2d& T_static,
+                        double along_beam_steps)
 {
   const Eigen::Matrix2Xd& source = views.source ();
-  const Eigen::Matrix2Xd& target = views.target ();
   const double cap = views.parameters ().overlap_radius;
   const detail::SensorView& seen = views.targetView ();
-  SegmentEvidence evidence{std::move (members), Rigid2d::Identity (), 0.0, {}, {}, {}};
-  evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
+  SegmentEvidence evidence;
+  evidence.members = std::move (members);
   const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
   std::vector<double> radii_squared;
   for (const int i : evidence.members)
     radii_squared.push_back (segment_radii[i - segment.begin]);
-  const detail::TargetPlacement by_static =
+  evidence.by_static =
       detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), radii_squared, views);
-  const detail::TargetPlacement by_own =
-      detail::placeInTarget (detail::movedPoints (source, evidence.members, evidence.motion), radii_squared, views);
   for (std::size_t k = 0; k < evidence.members.size (); ++k) {
     const auto c = static_cast<Eigen::Index> (k);
-    const Eigen::Vector2d at_static = by_static.points.col (c);
-    evidence.largest_move = std::max (evidence.largest_move, (by_own.points.col (c) - at_static).norm ());
-    if (!by_static.in_view[k] || !by_own.in_view[k] ||
-        matching::hiddenBehindAReturn (seen.profile, at_static, seen.breakpoint))
+    const Eigen::Vector2d at_static = evidence.by_static.points.col (c);
+    if (!evidence.by_static.in_view[k] || matching::hiddenBehindAReturn (seen.profile, at_static, seen.breakpoint))
       continue;
-    const OutlineDistance r_static =
-        distanceToOutline (at_static, target, outline, static_cast<int> (by_static.nearest.indices (0, c)));
+    const OutlineDistance r_static = distanceToOutline (at_static, views.target (), outline,
+                                                        static_cast<int> (evidence.by_static.nearest.indices (0, c)));
     if (r_static.beyond_end)
       continue;
-    const OutlineDistance r_own =
-        distanceToOutline (by_own.points.col (c), target, outline, static_cast<int> (by_own.nearest.indices (0, c)));
     const double along = along_beam_steps * seen.profile.step * at_static.norm ();
+    evidence.counted.push_back (static_cast<int> (k));
     evidence.static_squared.push_back (std::pow (std::min (cap, r_static.distance), 2));
-    evidence.own_squared.push_back (std::pow (std::min (cap, r_own.distance), 2));
     evidence.along_squared.push_back (along * along);
   }
   return evidence;
 }
 
+/** The own half: ICP of the members from T_static, and the counted points under it. */
+void
+weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outline, const Rigid2d& T_static,
+                     SegmentEvidence& evidence)
+{
+  const Eigen::Matrix2Xd& source = views.source ();
+  const double cap = views.parameters ().overlap_radius;
+  evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
+  const std::vector<double> unused_radii (evidence.members.size (), 0.0);
+  const detail::TargetPlacement by_own =
+      detail::placeInTarget (detail::movedPoints (source, evidence.members, evidence.motion), unused_radii, views);
+  for (Eigen::Index c = 0; c < by_own.points.cols (); ++c)
+    evidence.largest_move =
+        std::max (evidence.largest_move, (by_own.points.col (c) - evidence.by_static.points.col (c)).norm ());
+  for (const int k : evidence.counted) {
+    const OutlineDistance r_own =
+        distanceToOutline (by_own.points.col (k), views.target (), outline, static_cast<int> (by_own.nearest.indices (0, k)));
+    evidence.own_in_view.push_back (by_own.in_view[k]);
+    evidence.own_squared.push_back (std::pow (std::min (cap, r_own.distance), 2));
+  }
+}
+
 /** The static motion's own misfit as a variance: the median squared residual under it
- *  of every point weighed, over the median of χ²₁ (0 when none was weighed). */
+ *  of every counted point, over the median of χ²₁ (0 when none was counted). */
 double
 staticMisfitVariance (const std::vector<SegmentEvidence>& weighed)
 {
@@ -145,16 +168,53 @@ staticMisfitVariance (const std::vector<SegmentEvidence>& weighed)
   return *middle / kChiSquare1Median;
 }
 
-/** The deviance D = Σ_i (r_i(T_s)² − r_i(T)²) / σ_i² of the static motion against the
- *  segment's own, σ_i² = σ_r² + along_i² + \a misfit_variance. */
+/** The variance of counted point k's residual: σ_r² + along_k² + \a misfit_variance. */
 double
-deviance (const SegmentEvidence& evidence, double range_noise, double misfit_variance)
+residualVariance (const SegmentEvidence& evidence, std::size_t k, double range_noise, double misfit_variance)
+{
+  return range_noise * range_noise + evidence.along_squared[k] + misfit_variance;
+}
+
+/** The most the deviance can reach, were the own motion to fit every counted point. */
+double
+devianceBound (const SegmentEvidence& evidence, double range_noise, double misfit_variance)
 {
   double sum = 0.0;
   for (std::size_t k = 0; k < evidence.static_squared.size (); ++k)
-    sum += (evidence.static_squared[k] - evidence.own_squared[k]) /
-           (range_noise * range_noise + evidence.along_squared[k] + misfit_variance);
+    sum += evidence.static_squared[k] / residualVariance (evidence, k, range_noise, misfit_variance);
   return sum;
+}
+
+/** The deviance D = Σ_i (r_i(T_s)² − r_i(T)²) / σ_i² of the static motion against the
+ *  segment's own, over the counted points the own motion also places in view, and
+ *  their number. */
+std::pair<double, int>
+deviance (const SegmentEvidence& evidence, double range_noise, double misfit_variance)
+{
+  double sum = 0.0;
+  int used = 0;
+  for (std::size_t k = 0; k < evidence.own_squared.size (); ++k)
+    if (evidence.own_in_view[k]) {
+      sum += (evidence.static_squared[k] - evidence.own_squared[k]) /
+             residualVariance (evidence, k, range_noise, misfit_variance);
+      ++used;
+    }
+  return {sum, used};
+}
+
+/** Whether the segment moved slightly: the test of separateSegmentsThatMovedSlightly (),
+ *  its own motion fitted only where the bound leaves it a chance. */
+bool
+movedSlightly (const detail::ScanViews& views, const TargetOutline& outline, const Rigid2d& T_static,
+               const SlightMotionTest& test, int min_points, double misfit_variance, SegmentEvidence& evidence)
+{
+  const double range_noise = views.parameters ().range_noise;
+  if (static_cast<int> (evidence.counted.size ()) < min_points ||
+      devianceBound (evidence, range_noise, misfit_variance) < test.min_deviance)
+    return false;
+  weighUnderOwnMotion (views, outline, T_static, evidence);
+  const auto [d, used] = deviance (evidence, range_noise, misfit_variance);
+  return used >= min_points && evidence.largest_move <= views.parameters ().overlap_radius && d >= test.min_deviance;
 }
 
 /** The segment's static points become a cluster of their own motion, and the matched
@@ -197,18 +257,16 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
       if (result.source_cluster[i] == result.static_cluster)
         members.push_back (i);
     if (static_cast<int> (members.size ()) >= min_points)
-      weighed.push_back (weighSegment (views, outline, segment, std::move (members), T_static, test.along_beam_steps));
+      weighed.push_back (weighUnderStaticMotion (views, outline, segment, std::move (members), T_static,
+                                                 test.along_beam_steps));
   }
   const double misfit_variance = staticMisfitVariance (weighed);
   int separated = 0;
-  for (const SegmentEvidence& evidence : weighed) {
-    if (static_cast<int> (evidence.static_squared.size ()) < min_points ||
-        evidence.largest_move > views.parameters ().overlap_radius ||
-        deviance (evidence, views.parameters ().range_noise, misfit_variance) < test.min_deviance)
-      continue;
-    addClusterOf (evidence, views, result);
-    ++separated;
-  }
+  for (SegmentEvidence& evidence : weighed)
+    if (movedSlightly (views, outline, T_static, test, min_points, misfit_variance, evidence)) {
+      addClusterOf (evidence, views, result);
+      ++separated;
+    }
   if (separated > 0)
     numberLargestFirst (result);
   return separated;
