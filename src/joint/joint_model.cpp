@@ -92,6 +92,8 @@ validateParameters (const JointParameters& p)
     bad ("part_gap must be a distance > 0 m");
   if (!(p.slight_motion.min_deviance > 0.0) || !std::isfinite (p.slight_motion.min_deviance))
     bad ("slight_motion.min_deviance must be > 0");
+  if (!(p.slight_motion.min_mean_deviance >= 0.0) || !std::isfinite (p.slight_motion.min_mean_deviance))
+    bad ("slight_motion.min_mean_deviance must be >= 0");
   if (!(p.slight_motion.along_beam_steps >= 0.0) || !std::isfinite (p.slight_motion.along_beam_steps))
     bad ("slight_motion.along_beam_steps must be >= 0 beam steps");
   matching::describesBeams (p.sensor);  // throws for a sensor that describes no beams sensibly

@@ -214,7 +214,8 @@ movedSlightly (const detail::ScanViews& views, const TargetOutline& outline, con
     return false;
   weighUnderOwnMotion (views, outline, T_static, evidence);
   const auto [d, used] = deviance (evidence, range_noise, misfit_variance);
-  return used >= min_points && evidence.largest_move <= views.parameters ().overlap_radius && d >= test.min_deviance;
+  return used >= min_points && evidence.largest_move <= views.parameters ().overlap_radius && d >= test.min_deviance &&
+         d >= test.min_mean_deviance * used;
 }
 
 /** The segment's static points become a cluster of their own motion, and the matched
@@ -242,6 +243,8 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
   checkResultAgainstScans ("separateSegmentsThatMovedSlightly", views.source (), views.target (), result);
   if (!(test.min_deviance > 0.0) || !std::isfinite (test.min_deviance))
     fail ("min_deviance must be > 0, got " + std::to_string (test.min_deviance));
+  if (!(test.min_mean_deviance >= 0.0) || !std::isfinite (test.min_mean_deviance))
+    fail ("min_mean_deviance must be >= 0, got " + std::to_string (test.min_mean_deviance));
   if (!(test.along_beam_steps >= 0.0) || !std::isfinite (test.along_beam_steps))
     fail ("along_beam_steps must be >= 0, got " + std::to_string (test.along_beam_steps));
   if (min_points < 1)

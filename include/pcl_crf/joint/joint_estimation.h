@@ -248,21 +248,24 @@ keepLadderClustersTheFinalClusteringMerged (const Eigen::Matrix2Xd& source, cons
  *    overlap_radius (a point that lands on nothing counts as landing that far).
  *  - σ_i² = σ_r² + (along_beam_steps · ρ_i · Δφ)² + median_j r_j(T_s)² / 0.4549:
  *    range_noise, the outline's uncertainty between beams ρ_i Δφ apart (ρ_i the point's
- *    range, Δφ the target's beam step), and the static motion's own misfit, the median
- *    squared residual of all the tested points under T_s scaled to a variance (0.4549
- *    is the median of χ² with 1 degree of freedom), so that a pair whose static motion
- *    fits loosely everywhere needs more evidence.
- *  A segment with at least \a min_points such points, D ≥ test.min_deviance, and whose
+ *    range, Δφ the target's beam step), and the static motion's own misfit: the median
+ *    squared residual under T_s of the points T_s places as above in every segment
+ *    tested, scaled to a variance (0.4549 is the median of χ² with 1 degree of freedom),
+ *    so that a pair whose static motion fits loosely everywhere needs more evidence.
+ *  A segment with at least \a min_points such points, D ≥ test.min_deviance and
+ *  D ≥ test.min_mean_deviance times their number, and whose
  *  motion T moves none of its points farther than overlap_radius from where T_s puts them
  *  (the ICP's gate: a farther move is ICP drifting over a few points, not a slight
- *  motion; larger motions are the free-space steps') becomes a cluster of motion T, and its matched points take the target point nearest to where
- *  T puts them (associateUnderClusterMotions ()). estimateJoint runs this after the
+ *  motion; larger motions are the free-space steps') becomes a cluster of motion T, and
+ *  its matched points take the target point nearest to where T puts them
+ *  (associateUnderClusterMotions ()). T is fitted only where D could reach the bar, were
+ *  T to fit every point exactly. estimateJoint runs this after the
  *  free-space steps, which find larger motions with the target's help; ICP from the
  *  static motion reaches only motions within overlap_radius.
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] parameters the segments' and overlap radius' settings and range_noise (the matcher's segment parameters)
- *  \param[in] test the least deviance and the along-beam uncertainty
+ *  \param[in] test the least deviance, in all and per point, and the along-beam uncertainty
  *  \param[in] min_points the fewest points of a segment tested and of its evidence (≥ 1)
  *  \param[in,out] result the clusters over \a source (renumbered largest first when one is added)
  *  \return the number of clusters added

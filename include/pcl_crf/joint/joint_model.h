@@ -25,6 +25,12 @@ struct SlightMotionTest
    *  freedom; default 32, which it exceeds with probability below 10⁻⁶, so that among
    *  the tens of segments of thousands of pairs a static one is hardly ever separated. */
   double min_deviance = 32.0;
+  /** the least deviance per point counted (≥ 0): on average each point must favour the
+   *  segment's own motion by this many variances. Along one surface the residuals are
+   *  correlated (the static motion's error and the surface's shape are shared by
+   *  neighbouring points), so a long segment can sum to min_deviance an effect no point
+   *  shows. Default 1: one variance. */
+  double min_mean_deviance = 1.0;
   /** the uncertainty of a residual along the surface, in beam steps of the target scan
    *  (≥ 0): where neighbouring beams land ρ Δφ apart on a surface ρ away, its outline
    *  between them is not known to better than a fraction of that, and the static
