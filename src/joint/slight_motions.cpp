@@ -26,6 +26,19 @@ fail (const std::string& what)
   throw std::invalid_argument ("[pcl_crf::joint::separateSegmentsThatMovedSlightly] " + what);
 }
 
+void
+checkTest (const SlightMotionTest& test, int min_points)
+{
+  if (!(test.min_deviance > 0.0) || !std::isfinite (test.min_deviance))
+    fail ("min_deviance must be > 0, got " + std::to_string (test.min_deviance));
+  if (!(test.min_mean_deviance >= 0.0) || !std::isfinite (test.min_mean_deviance))
+    fail ("min_mean_deviance must be >= 0, got " + std::to_string (test.min_mean_deviance));
+  if (!(test.along_beam_steps >= 0.0) || !std::isfinite (test.along_beam_steps))
+    fail ("along_beam_steps must be >= 0, got " + std::to_string (test.along_beam_steps));
+  if (min_points < 1)
+    fail ("min_points must be >= 1, got " + std::to_string (min_points));
+}
+
 /** The target's outline: per target point, the begin and end of its segment. */
 struct TargetOutline
 {
@@ -241,14 +254,7 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
                                            JointResult& result)
 {
   checkResultAgainstScans ("separateSegmentsThatMovedSlightly", views.source (), views.target (), result);
-  if (!(test.min_deviance > 0.0) || !std::isfinite (test.min_deviance))
-    fail ("min_deviance must be > 0, got " + std::to_string (test.min_deviance));
-  if (!(test.min_mean_deviance >= 0.0) || !std::isfinite (test.min_mean_deviance))
-    fail ("min_mean_deviance must be >= 0, got " + std::to_string (test.min_mean_deviance));
-  if (!(test.along_beam_steps >= 0.0) || !std::isfinite (test.along_beam_steps))
-    fail ("along_beam_steps must be >= 0, got " + std::to_string (test.along_beam_steps));
-  if (min_points < 1)
-    fail ("min_points must be >= 1, got " + std::to_string (min_points));
+  checkTest (test, min_points);
   if (!canSeparateFromStaticWorld (views.source (), views.target (), result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
