@@ -84,8 +84,15 @@ grazedPoints (const Eigen::Matrix2Xd& points, double breakpoint_angle)
 bool
 sawThrough (const SensorView& seen, const Eigen::Vector2d& point, SeenThrough test)
 {
-  return test == SeenThrough::Firmly ? matching::seesThroughFirmly (seen.profile, point, seen.breakpoint)
-                                     : matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint);
+  switch (test) {
+  case SeenThrough::Firmly:
+    return matching::seesThroughFirmly (seen.profile, point, seen.breakpoint);
+  case SeenThrough::ToAReturn:
+    return matching::seesThroughToAReturn (seen.profile, point, seen.breakpoint);
+  case SeenThrough::NotAsked:
+    break;
+  }
+  return false;
 }
 
 TargetPlacement

@@ -106,10 +106,13 @@ enum class SeenThrough
   ToAReturn,
   /** matching::seesThroughFirmly (): a return beyond it, or beams without one that
    *  are not beside the return of a surface whose edge they may have dropped. */
-  Firmly
+  Firmly,
+  /** not asked (TargetPlacement::seen_through all false): for a caller that does not read it. */
+  NotAsked
 };
 
-/** Whether the sensor of \a seen saw through \a point (in its frame) by \a test. */
+/** Whether the sensor of \a seen saw through \a point (in its frame) by \a test (false
+ *  when not asked). */
 bool
 sawThrough (const SensorView& seen, const Eigen::Vector2d& point, SeenThrough test);
 

@@ -125,8 +125,8 @@ weighUnderStaticMotion (const detail::ScanViews& views, const TargetOutline& out
   std::vector<double> radii_squared;
   for (const int i : evidence.members)
     radii_squared.push_back (segment_radii[i - segment.begin]);
-  evidence.by_static =
-      detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), radii_squared, views);
+  evidence.by_static = detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), radii_squared,
+                                              views, detail::SeenThrough::NotAsked);
   for (std::size_t k = 0; k < evidence.members.size (); ++k) {
     const auto c = static_cast<Eigen::Index> (k);
     const Eigen::Vector2d at_static = evidence.by_static.points.col (c);
@@ -153,8 +153,8 @@ weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outlin
   const double cap = views.parameters ().overlap_radius;
   evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
   const std::vector<double> unused_radii (evidence.members.size (), 0.0);
-  const detail::TargetPlacement by_own =
-      detail::placeInTarget (detail::movedPoints (source, evidence.members, evidence.motion), unused_radii, views);
+  const detail::TargetPlacement by_own = detail::placeInTarget (
+      detail::movedPoints (source, evidence.members, evidence.motion), unused_radii, views, detail::SeenThrough::NotAsked);
   for (Eigen::Index c = 0; c < by_own.points.cols (); ++c)
     evidence.largest_move =
         std::max (evidence.largest_move, (by_own.points.col (c) - evidence.by_static.points.col (c)).norm ());
