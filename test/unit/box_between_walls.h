@@ -6,6 +6,7 @@
 #include <pcl_crf/core/scan_pair.h>
 
 #include <cmath>
+#include <vector>
 
 namespace pcl_crf {
 namespace test {
@@ -33,6 +34,19 @@ boxBetweenWalls (const Rigid2d& box_motion = Rigid2d::Identity ())
     points.col (kBoxBegin + k) = box_motion * Eigen::Vector2d (0.6, -0.1 + 0.01 * k);
   for (int k = 0; k < kWallPoints; ++k)
     points.col (kBoxEnd + k) = wall (20.0 + k);
+  return points;
+}
+
+/** The walls of boxBetweenWalls () with \a middle (in beam order) in place of the box. */
+inline Eigen::Matrix2Xd
+wallsAround (const std::vector<Eigen::Vector2d>& middle)
+{
+  const Eigen::Matrix2Xd walls = boxBetweenWalls ();
+  Eigen::Matrix2Xd points (2, 2 * kWallPoints + static_cast<Eigen::Index> (middle.size ()));
+  points.leftCols (kWallPoints) = walls.leftCols (kWallPoints);
+  for (std::size_t k = 0; k < middle.size (); ++k)
+    points.col (kWallPoints + static_cast<Eigen::Index> (k)) = middle[k];
+  points.rightCols (kWallPoints) = walls.rightCols (kWallPoints);
   return points;
 }
 

@@ -28,6 +28,7 @@ using pcl_crf::test::kPoints;
 using pcl_crf::test::kWallPoints;
 using pcl_crf::test::onBox;
 using pcl_crf::test::translation;
+using pcl_crf::test::wallsAround;
 
 constexpr int kMinPoints = 3;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN ();
@@ -139,17 +140,12 @@ TEST (JointSlightMotions, PointsHiddenBehindATargetReturnSayNothing)
   // from −0.15 to 0.15): more than the breakpoint distance (9 cm there) nearer, so the
   // target could not have seen the box. ICP would pull the box onto the board, within
   // the 15 cm gate; but hidden points are no evidence, and the box stays static.
-  const Eigen::Matrix2Xd full = boxBetweenWalls ();
-  std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < kBoxBegin; ++i)
-    points.push_back (full.col (i));
+  std::vector<Eigen::Vector2d> board;
   for (int k = 0; k <= 30; ++k)
-    points.push_back (Eigen::Vector2d (0.48, -0.15 + 0.01 * k));
-  for (int i = kBoxEnd; i < kPoints; ++i)
-    points.push_back (full.col (i));
+    board.push_back (Eigen::Vector2d (0.48, -0.15 + 0.01 * k));
   JointResult result = allStatic ();
   std::fill (result.source_match.begin (), result.source_match.end (), pcl_crf::kNoMatch);
-  EXPECT_EQ (separate (pcl_crf::test::asColumns (points), result), 0);
+  EXPECT_EQ (separate (wallsAround (board), result), 0);
   EXPECT_EQ (result.source_cluster, allStatic ().source_cluster);
 }
 
@@ -158,15 +154,10 @@ TEST (JointSlightMotions, PointsHiddenBehindATargetReturnSayNothing)
 Eigen::Matrix2Xd
 panelBetweenWalls (double shift)
 {
-  const Eigen::Matrix2Xd walls = boxBetweenWalls ();
-  std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < kBoxBegin; ++i)
-    points.push_back (walls.col (i));
+  std::vector<Eigen::Vector2d> panel;
   for (int k = 0; k < 60; ++k)
-    points.push_back (Eigen::Vector2d (0.6 + shift, -0.1475 + 0.005 * k));
-  for (int i = kBoxEnd; i < kPoints; ++i)
-    points.push_back (walls.col (i));
-  return pcl_crf::test::asColumns (points);
+    panel.push_back (Eigen::Vector2d (0.6 + shift, -0.1475 + 0.005 * k));
+  return wallsAround (panel);
 }
 
 TEST (JointSlightMotions, ALongSegmentNeedsItsPointsToShowTheMotion)
@@ -193,16 +184,11 @@ TEST (JointSlightMotions, ALongSegmentNeedsItsPointsToShowTheMotion)
 Eigen::Matrix2Xd
 rodBetweenWalls (double degrees)
 {
-  const Eigen::Matrix2Xd walls = boxBetweenWalls ();
   const Rigid2d turn = translation (0.6, -0.2) * Eigen::Rotation2Dd (degrees * M_PI / 180.0) * translation (-0.6, 0.2);
-  std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < kBoxBegin; ++i)
-    points.push_back (walls.col (i));
+  std::vector<Eigen::Vector2d> rod;
   for (int k = 0; k <= 20; ++k)
-    points.push_back (turn * Eigen::Vector2d (0.6, -0.2 + 0.02 * k));
-  for (int i = kBoxEnd; i < kPoints; ++i)
-    points.push_back (walls.col (i));
-  return pcl_crf::test::asColumns (points);
+    rod.push_back (turn * Eigen::Vector2d (0.6, -0.2 + 0.02 * k));
+  return wallsAround (rod);
 }
 
 TEST (JointSlightMotions, AMotionThatMovesAPointBeyondTheGateIsNotSlight)
