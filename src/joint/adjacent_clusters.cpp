@@ -57,13 +57,10 @@ placeByBoth (const detail::ScanViews& views, const matching::ScanSegment& segmen
              const Rigid2d& first, const Rigid2d& second)
 {
   const Eigen::Matrix2Xd& source = views.source ();
-  const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
-  std::vector<double> radii_squared;
+  const std::vector<double> radii_squared = detail::squaredOverlapRadii (source, segment, members, views.parameters ());
   Eigen::Matrix2Xd points (2, static_cast<Eigen::Index> (members.size ()));
-  for (std::size_t k = 0; k < members.size (); ++k) {
-    radii_squared.push_back (segment_radii[members[k] - segment.begin]);
+  for (std::size_t k = 0; k < members.size (); ++k)
     points.col (static_cast<Eigen::Index> (k)) = source.col (members[k]);
-  }
   TwoPlacements both{detail::placeInTarget (first * points, radii_squared, views),
                      detail::placeInTarget (second * points, radii_squared, views)};
   for (std::size_t k = 0; k < members.size (); ++k)
@@ -83,10 +80,7 @@ explainsAsWell (const detail::ScanViews& views, const JointResult& result, int l
 {
   int own = 0, other = 0;
   for (const matching::ScanSegment& segment : views.sourceSegments ()) {
-    std::vector<int> members;  // of cluster l, in the segment's order
-    for (int i = segment.begin; i < segment.end; ++i)
-      if (result.source_cluster[i] == l)
-        members.push_back (i);
+    const std::vector<int> members = detail::segmentPointsLabelled (segment, result.source_cluster, l);
     if (members.empty ())
       continue;
     const TwoPlacements both = placeByBoth (views, segment, members, result.cluster_motions[l], T);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 namespace pcl_crf {
@@ -114,14 +115,23 @@ placeInTarget (Eigen::Matrix2Xd points, const std::vector<double>& radii_squared
 
 std::vector<double>
 squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
-                     const matching::SegmentMotionParameters& parameters)
+                     const std::vector<int>& members, const matching::SegmentMotionParameters& parameters)
 {
   std::vector<double> radii;
-  for (int i = segment.begin; i < segment.end; ++i) {
+  for (const int i : members) {
     const double r = matching::overlapRadius (parameters, matching::pointSpacing (source, i, segment.begin, segment.end));
     radii.push_back (r * r);
   }
   return radii;
+}
+
+std::vector<double>
+squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
+                     const matching::SegmentMotionParameters& parameters)
+{
+  std::vector<int> all (static_cast<std::size_t> (segment.size ()));
+  std::iota (all.begin (), all.end (), segment.begin);
+  return squaredOverlapRadii (source, segment, all, parameters);
 }
 
 }  // namespace detail

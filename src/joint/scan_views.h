@@ -146,6 +146,22 @@ std::vector<double>
 squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
                      const matching::SegmentMotionParameters& parameters);
 
+/** The same for \a members only, points of \a segment, in their order. */
+std::vector<double>
+squaredOverlapRadii (const Eigen::Matrix2Xd& source, const matching::ScanSegment& segment,
+                     const std::vector<int>& members, const matching::SegmentMotionParameters& parameters);
+
+/** The points of \a segment labelled \a l in \a labels (one per source point), in order. */
+inline std::vector<int>
+segmentPointsLabelled (const matching::ScanSegment& segment, const std::vector<int>& labels, int l)
+{
+  std::vector<int> points;
+  for (int i = segment.begin; i < segment.end; ++i)
+    if (labels[i] == l)
+      points.push_back (i);
+  return points;
+}
+
 /** Point-to-point ICP of the source points \a members from T: each round pairs every
  *  point with its nearest target point (one batched query), drops the pairs farther
  *  apart than \a gate, and refits the motion in closed form (eq. 6); at most 20 rounds,

@@ -96,10 +96,7 @@ movedAsTheLadderSays (const detail::ScanViews& views, const matching::ScanSegmen
                       const std::vector<int>& members, const Rigid2d& T_static, const Rigid2d& T_ladder, int min_points)
 {
   const Eigen::Matrix2Xd& source = views.source ();
-  const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
-  std::vector<double> radii_squared;
-  for (int i : members)
-    radii_squared.push_back (segment_radii[i - segment.begin]);
+  const std::vector<double> radii_squared = detail::squaredOverlapRadii (source, segment, members, views.parameters ());
   const detail::TargetPlacement by_static = detail::placeInTarget (detail::movedPoints (source, members, T_static),
                                                                    radii_squared, views);
   const detail::TargetPlacement by_ladder = detail::placeInTarget (detail::movedPoints (source, members, T_ladder),
@@ -132,10 +129,7 @@ addSegmentMotionHypotheses (const Eigen::Matrix2Xd& source, const KnnIndex& targ
   std::vector<std::pair<std::vector<int>, Rigid2d>> hypotheses;
   for (const matching::ScanSegment& segment :
        matching::segmentScan (source, parameters.breakpoint_angle, parameters.range_noise)) {
-    std::vector<int> members;  // the segment's points in the static world's cluster
-    for (int i = segment.begin; i < segment.end; ++i)
-      if (start.cluster[i] == static_cluster)
-        members.push_back (i);
+    std::vector<int> members = detail::segmentPointsLabelled (segment, start.cluster, static_cluster);
     const int n = static_cast<int> (members.size ());
     if (n < parameters.min_segment_points ||
         2 * explainedByNearest (source, segment, members, target_points, T_static, parameters) >= n)
@@ -172,10 +166,7 @@ detail::keepLadderClustersTheFinalClusteringMerged (const ScanViews& views, cons
   std::vector<Rigid2d> kept_motions;
   std::vector<std::vector<int>> kept_members;
   for (const matching::ScanSegment& segment : views.sourceSegments ()) {
-    std::vector<int> members;  // the segment's points in the final static world
-    for (int i = segment.begin; i < segment.end; ++i)
-      if (result.source_cluster[i] == result.static_cluster)
-        members.push_back (i);
+    std::vector<int> members = detail::segmentPointsLabelled (segment, result.source_cluster, result.static_cluster);
     if (static_cast<int> (members.size ()) < min_points || 2 * static_cast<int> (members.size ()) <= segment.size ())
       continue;
     // They must all be in one moving cluster of the ladder.

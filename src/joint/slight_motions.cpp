@@ -1,5 +1,6 @@
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/range_profile.h>
+#include <pcl_crf/matching/scan_segments.h>
 
 #include "cluster_numbering.h"
 #include "scan_views.h"
@@ -39,23 +40,21 @@ checkTest (const SlightMotionTest& test, int min_points)
     fail ("min_points must be >= 1, got " + std::to_string (min_points));
 }
 
-/** The target's outline: per target point, the begin and end of its segment. */
+/** The target's outline: per target point, the index of its segment
+ *  (detail::ScanViews::targetSegments (); −1 for a point on none, an outline of its own). */
 struct TargetOutline
 {
-  std::vector<int> begin, end;
+  std::vector<int> segment_of;
 
   explicit TargetOutline (const detail::ScanViews& views)
+    : segment_of (matching::segmentOfEachPoint (views.targetSegments (), views.target ().cols ()))
+  {}
+
+  /** Whether target point \a j lies on the segment of target point \a q (\a q's neighbour). */
+  bool
+  sameSegment (int q, int j) const
   {
-    const auto m = static_cast<int> (views.target ().cols ());
-    for (int j = 0; j < m; ++j) {  // a point on no segment is one of its own
-      begin.push_back (j);
-      end.push_back (j + 1);
-    }
-    for (const matching::ScanSegment& segment : views.targetSegments ())
-      for (int j = segment.begin; j < segment.end; ++j) {
-        begin[j] = segment.begin;
-        end[j] = segment.end;
-      }
+    return j >= 0 && j < static_cast<int> (segment_of.size ()) && segment_of[q] >= 0 && segment_of[j] == segment_of[q];
   }
 };
 
@@ -73,10 +72,10 @@ OutlineDistance
 distanceToOutline (const Eigen::Vector2d& point, const Eigen::Matrix2Xd& target, const TargetOutline& outline, int q)
 {
   const Eigen::Vector2d a = target.col (q);
-  OutlineDistance result{(point - a).norm (), q == outline.begin[q] || q == outline.end[q] - 1};
+  OutlineDistance result{(point - a).norm (), !outline.sameSegment (q, q - 1) || !outline.sameSegment (q, q + 1)};
   bool along_a_piece = false;
   for (const int j : {q - 1, q + 1}) {
-    if (j < outline.begin[q] || j >= outline.end[q])
+    if (!outline.sameSegment (q, j))
       continue;
     const Eigen::Vector2d piece = target.col (j) - a;
     const double squared_length = piece.squaredNorm ();
@@ -110,23 +109,19 @@ struct SegmentEvidence
   std::vector<double> own_squared;
 };
 
-/** The static half of the evidence of \a members (the static points of \a segment). */
+/** The static half of the evidence of \a members (the static points of one source segment). */
 SegmentEvidence
 weighUnderStaticMotion (const detail::ScanViews& views, const TargetOutline& outline,
-                        const matching::ScanSegment& segment, std::vector<int> members, const Rigid2d& T_static,
-                        double along_beam_steps)
+                        std::vector<int> members, const Rigid2d& T_static, double along_beam_steps)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   const double cap = views.parameters ().overlap_radius;
   const detail::SensorView& seen = views.targetView ();
   SegmentEvidence evidence;
   evidence.members = std::move (members);
-  const std::vector<double> segment_radii = detail::squaredOverlapRadii (source, segment, views.parameters ());
-  std::vector<double> radii_squared;
-  for (const int i : evidence.members)
-    radii_squared.push_back (segment_radii[i - segment.begin]);
-  evidence.by_static = detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), radii_squared,
-                                              views, detail::SeenThrough::NotAsked);
+  const std::vector<double> not_read (evidence.members.size (), 0.0);  // the test reads no `explained`
+  evidence.by_static = detail::placeInTarget (detail::movedPoints (source, evidence.members, T_static), not_read, views,
+                                              detail::SeenThrough::NotAsked);
   for (std::size_t k = 0; k < evidence.members.size (); ++k) {
     const auto c = static_cast<Eigen::Index> (k);
     const Eigen::Vector2d at_static = evidence.by_static.points.col (c);
@@ -152,9 +147,9 @@ weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outlin
   const Eigen::Matrix2Xd& source = views.source ();
   const double cap = views.parameters ().overlap_radius;
   evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
-  const std::vector<double> unused_radii (evidence.members.size (), 0.0);
+  const std::vector<double> not_read (evidence.members.size (), 0.0);  // the test reads no `explained`
   const detail::TargetPlacement by_own = detail::placeInTarget (
-      detail::movedPoints (source, evidence.members, evidence.motion), unused_radii, views, detail::SeenThrough::NotAsked);
+      detail::movedPoints (source, evidence.members, evidence.motion), not_read, views, detail::SeenThrough::NotAsked);
   for (Eigen::Index c = 0; c < by_own.points.cols (); ++c)
     evidence.largest_move =
         std::max (evidence.largest_move, (by_own.points.col (c) - evidence.by_static.points.col (c)).norm ());
@@ -261,13 +256,9 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
   const TargetOutline outline (views);
   std::vector<SegmentEvidence> weighed;
   for (const matching::ScanSegment& segment : views.sourceSegments ()) {
-    std::vector<int> members;  // the segment's points in the static world
-    for (int i = segment.begin; i < segment.end; ++i)
-      if (result.source_cluster[i] == result.static_cluster)
-        members.push_back (i);
+    std::vector<int> members = detail::segmentPointsLabelled (segment, result.source_cluster, result.static_cluster);
     if (static_cast<int> (members.size ()) >= min_points)
-      weighed.push_back (weighUnderStaticMotion (views, outline, segment, std::move (members), T_static,
-                                                 test.along_beam_steps));
+      weighed.push_back (weighUnderStaticMotion (views, outline, std::move (members), T_static, test.along_beam_steps));
   }
   const double misfit_variance = staticMisfitVariance (weighed);
   int separated = 0;
