@@ -231,10 +231,13 @@ selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, co
     throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] the grid is empty");
   if (pairs.empty ())
     throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] no pairs to score");
-  std::vector<std::vector<double>> scores;
-  for (const int value : grid) {
+  for (const int value : grid)
     if (value < 1)
       throw std::invalid_argument ("[pcl_crf::joint::selectMinClusterPoints] grid values must be >= 1");
+  if (grid.size () == 1)  // nothing to choose between
+    return grid.front ();
+  std::vector<std::vector<double>> scores;
+  for (const int value : grid) {
     model.min_cluster_points = value;
     scores.push_back (trainingScores (pairs, model, &PairScores::v_measure));
   }

@@ -20,6 +20,7 @@ using pcl_crf::ScanPair;
 using pcl_crf::joint::JointLearningOptions;
 using pcl_crf::joint::JointModel;
 using pcl_crf::joint::learnJointWeightsAndPrior;
+using pcl_crf::joint::selectMinClusterPoints;
 using pcl_crf::joint::selectWithinOneStandardError;
 
 const JointModel&
@@ -84,6 +85,25 @@ TEST (JointLearning, OneStandardErrorRuleRejectsBadInput)
   EXPECT_THROW (selectWithinOneStandardError (kScores, {0, 1, 3}), std::invalid_argument);  // no candidate 3
   EXPECT_THROW (selectWithinOneStandardError ({{0.5, 0.4}, {0.5}}, {0, 1}), std::invalid_argument);
   EXPECT_THROW (selectWithinOneStandardError ({{}, {}}, {0, 1}), std::invalid_argument);
+}
+
+TEST (JointLearning, TheSmallestClusterIsThreePointsUnlessAGridOffersSeveral)
+{
+  EXPECT_EQ (JointLearningOptions ().min_cluster_points_grid, std::vector<int> ({3}));
+  // One value is taken without scoring a pair: an untrained model would throw if run.
+  const std::vector<ScanPair> pairs = consecutivePairs (1);
+  const JointModel untrained;
+  EXPECT_EQ (selectMinClusterPoints (pairs, untrained, {7}), 7);
+  EXPECT_THROW (selectMinClusterPoints (pairs, untrained, {7, 9}), std::invalid_argument);  // scored: not trained
+}
+
+TEST (JointLearning, ClusterSizeSelectionRejectsBadInput)
+{
+  const std::vector<ScanPair> pairs = consecutivePairs (1);
+  EXPECT_THROW (selectMinClusterPoints (pairs, shippedModel (), {}), std::invalid_argument);
+  EXPECT_THROW (selectMinClusterPoints (pairs, shippedModel (), {0}), std::invalid_argument);
+  EXPECT_THROW (selectMinClusterPoints (pairs, shippedModel (), {3, -1}), std::invalid_argument);
+  EXPECT_THROW (selectMinClusterPoints ({}, shippedModel (), {3}), std::invalid_argument);
 }
 
 TEST (JointLearning, ConsecutiveScansTakeATighterPriorThanTheLooseOneTheyDefeat)

@@ -29,8 +29,14 @@ struct JointLearningOptions
   /** the candidate offsets of the association outlier bias (see selectOutlierBiasOffset)
    *  [nats]; default −6, −5.5, …, 2. */
   std::vector<double> outlier_bias_offset_grid{-6.0, -5.5, -5.0, -4.5, -4.0, -3.5, -3.0, -2.5, -2.0, -1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0};
-  /** the candidates of JointModel::min_cluster_points [points]; default 3, 5, 8, 13, 20. */
-  std::vector<int> min_cluster_points_grid{3, 5, 8, 13, 20};
+  /** the candidates of JointModel::min_cluster_points [points] (selectMinClusterPoints);
+   *  default 3 alone, which fixes it: the fewest points that over-determine a rigid
+   *  motion in the plane (two fix it), so that a cluster's own points check its motion.
+   *  Chosen from 3, 5, 8, 13 and 20 on the shipped training split, where V is flat over
+   *  them, the choice drifted from 3 to 13 as later inference steps were added, while
+   *  the held-out sets kept scoring 3 higher (docs/EXPERIMENTS.md, "The smallest cluster
+   *  fixed at 3 points"). Give several to choose on your own scans. */
+  std::vector<int> min_cluster_points_grid{3};
 };
 
 /** \brief The node conditionals of one labelled pair for pseudo-likelihood learning
@@ -56,7 +62,8 @@ jointNodeConditionals (const ScanPair& pair, const JointModel& model);
  *  kJointWeightCount joint weights together by maximum pseudo-likelihood with L-BFGS
  *  (learnNodePseudoLikelihood over jointNodeConditionals of every pair) with their
  *  prior and the association outlier bias's calibration (learnJointWeightsAndPrior),
- *  then the smallest cluster size (selectMinClusterPoints), each chosen on the
+ *  and the smallest cluster size (selectMinClusterPoints: 3 points unless
+ *  JointLearningOptions::min_cluster_points_grid offers several), each chosen on the
  *  training pairs.
  *
  *  \code
@@ -77,13 +84,13 @@ trainJointModel (const std::vector<ScanPair>& pairs, const JointLearningOptions&
 double
 selectOutlierBiasOffset (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<double>& grid);
 
-/** \brief The grid value of min_cluster_points chosen by the mean V-measure of
+/** \brief The grid value of min_cluster_points: a grid of one value is that value (no
+ *  pair is scored); otherwise the one chosen by the mean V-measure of
  *  estimateJoint on \a pairs, with the one-standard-error rule: the smallest value
  *  (the least pruning) whose mean is within one standard error of the best mean, the
  *  error that of the mean of the per-pair differences from the best. V of one pair
  *  jumps with a single small object, so values that change a handful of pairs are
- *  ties (on the shipped training split, 3 and 20 differ on 5 of 30 pairs, by 0.004
- *  on average, within the 0.004 standard error).
+ *  ties.
  *  \throws std::invalid_argument for an empty grid, a value < 1 or no pairs. */
 int
 selectMinClusterPoints (const std::vector<ScanPair>& pairs, JointModel model, const std::vector<int>& grid);
