@@ -559,7 +559,8 @@ freePoints (const JointResult& result)
  *  through under the static motion. \return true when a cluster was added. */
 bool
 separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, const std::vector<int>& free,
-                         const std::vector<int>& static_target, JointResult& result)
+                         const std::vector<int>& static_target, const detail::StaticFitCheck* check,
+                         JointResult& result)
 {
   const matching::SegmentMotionParameters& parameters = scene.parameters;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
@@ -616,6 +617,8 @@ separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, co
     const Rigid2d T_moved = candidate.search.motion (candidate.run.middle ());
     if (firmlySeenThrough (scene, segment, object, T_moved) >= firm)  // it explains only dropped edge returns
       continue;
+    if (check != nullptr && detail::staticFitRefutes (scene.views, result, object, T_moved, *check))
+      continue;  // free space saw the noise of a rough surface the static motion fits
     addCluster (scene, object, g, T_moved, landedTargetPoints (scene, object, T_moved), result);
     return true;
   }
@@ -625,7 +628,7 @@ separateObjectOfSegment (const FreeSpaceScene& scene, int g, int static_seen, co
 }  // namespace
 
 int
-detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
+detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result, const StaticFitCheck* check)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   const Eigen::Matrix2Xd& target = views.target ();
@@ -654,14 +657,14 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
   int added = 0;
   for (int g : moved_in) {
     scene.surfaces = &scene.segments;  // the moved-in segment alone
-    if (separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, result)) {
+    if (separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, check, result)) {
       ++added;
       continue;
     }
     if (!scene.occluded.joinsOthers (g))
       continue;
     scene.surfaces = &scene.occluded;  // with the segments it continues behind occluders
-    added += separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, result);
+    added += separateObjectOfSegment (scene, g, static_seen_through[g], free, static_target, check, result);
   }
   if (added > 0)
     numberLargestFirst (result);
@@ -670,9 +673,13 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result)
 
 int
 separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                            const matching::SegmentMotionParameters& parameters, JointResult& result)
+                            const matching::SegmentMotionParameters& parameters, JointResult& result,
+                            const SlightMotionTest* static_fit)
 {
-  return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result);
+  if (static_fit == nullptr)
+    return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result);
+  const detail::StaticFitCheck check{*static_fit, parameters.min_segment_points};
+  return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result, &check);
 }
 
 }  // namespace joint

@@ -405,13 +405,16 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     detail::removeClustersTheTargetSeesThrough (views, result);
   if (parameters.remove_clusters_on_the_static_outline)
     detail::removeClustersOnTheStaticOutline (views, result);
+  const detail::StaticFitCheck static_fit{parameters.slight_motion, segments.min_segment_points * thinned.source.factor};
+  const detail::StaticFitCheck* check =
+      parameters.check_free_space_motions_against_the_static_fit ? &static_fit : nullptr;
   if (parameters.separate_objects_in_free_space)
-    detail::separateObjectsInFreeSpace (views, result);
+    detail::separateObjectsInFreeSpace (views, result, check);
   // The slid segments' least evidence is counted at the model's resolution: a scan
   // thinned by k above shows k times as many points over the same bearings.
   if (parameters.separate_segments_the_target_sees_through)
     detail::separateSegmentsTheTargetSeesThrough (
-        views, parameters.segment_min_points_seen_through * thinned.source.factor, result);
+        views, parameters.segment_min_points_seen_through * thinned.source.factor, result, check);
   if (parameters.separate_points_the_target_sees_through)
     detail::separatePointsTheTargetSeesThrough (views, result);
   if (parameters.separate_segments_that_moved_slightly)

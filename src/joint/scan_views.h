@@ -178,11 +178,36 @@ removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 int
 removeClustersOnTheStaticOutline (const ScanViews& views, JointResult& result);
 
+/** The static world's answer to a motion that a free-space step found for some of its
+ *  points: the slight-motion test with the roles swapped (staticFitRefutes ()). */
+struct StaticFitCheck
+{
+  SlightMotionTest test;
+  /** the fewest static points a source segment needs to count in the static motion's
+   *  misfit (as separateSegmentsThatMovedSlightly ()'s min_points). */
+  int min_points = 1;
+};
+
+/** Whether the static motion fits the source points \a members to the target's outline
+ *  better than motion \a T does, by the evidence separateSegmentsThatMovedSlightly ()
+ *  asks of the opposite decision: over the members the static motion places in the
+ *  target's view, neither hidden behind a return nor beyond a surface's end, and that T
+ *  places in view too, D = Σ (r(T)² − r(T_static)²) / σ² ≥ test.min_deviance and
+ *  ≥ test.min_mean_deviance per point (r the distance to the outline, capped at
+ *  overlap_radius; σ² as that test takes it, with the static world's current misfit).
+ *  False without a static world. */
+bool
+staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members, const Rigid2d& T,
+                  const StaticFitCheck& check);
+
+/** \a check, when given, drops every motion found that the static fit refutes
+ *  (staticFitRefutes ()). */
 int
-separateObjectsInFreeSpace (const ScanViews& views, JointResult& result);
+separateObjectsInFreeSpace (const ScanViews& views, JointResult& result, const StaticFitCheck* check = nullptr);
 
 int
-separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result);
+separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result,
+                                      const StaticFitCheck* check = nullptr);
 
 int
 separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result);

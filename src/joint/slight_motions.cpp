@@ -21,15 +21,13 @@ namespace {
  *  over its variance. */
 constexpr double kChiSquare1Median = 0.454936423119572;
 
-[[noreturn]] void
-fail (const std::string& what)
-{
-  throw std::invalid_argument ("[pcl_crf::joint::separateSegmentsThatMovedSlightly] " + what);
-}
-
+/** Throws std::invalid_argument unless \a test and \a min_points are in range, naming \a function. */
 void
-checkTest (const SlightMotionTest& test, int min_points)
+checkTest (const char* function, const SlightMotionTest& test, int min_points)
 {
+  const auto fail = [function] (const std::string& what) {
+    throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
+  };
   if (!(test.min_deviance > 0.0) || !std::isfinite (test.min_deviance))
     fail ("min_deviance must be > 0, got " + std::to_string (test.min_deviance));
   if (!(test.min_mean_deviance >= 0.0) || !std::isfinite (test.min_mean_deviance))
@@ -139,14 +137,14 @@ weighUnderStaticMotion (const detail::ScanViews& views, const TargetOutline& out
   return evidence;
 }
 
-/** The own half: ICP of the members from T_static, and the counted points under it. */
+/** The other half: the counted points under motion \a T, taken as the members' own. */
 void
-weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outline, const Rigid2d& T_static,
-                     SegmentEvidence& evidence)
+weighUnderMotion (const detail::ScanViews& views, const TargetOutline& outline, const Rigid2d& T,
+                  SegmentEvidence& evidence)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   const double cap = views.parameters ().overlap_radius;
-  evidence.motion = detail::icpOnNearestPoints (source, evidence.members, views.targetPoints (), T_static, cap);
+  evidence.motion = T;
   const std::vector<double> not_read (evidence.members.size (), 0.0);  // the test reads no `explained`
   const detail::TargetPlacement by_own = detail::placeInTarget (
       detail::movedPoints (source, evidence.members, evidence.motion), not_read, views, detail::SeenThrough::NotAsked);
@@ -159,6 +157,33 @@ weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outlin
     evidence.own_in_view.push_back (by_own.in_view[k]);
     evidence.own_squared.push_back (std::pow (std::min (cap, r_own.distance), 2));
   }
+}
+
+/** The own half: ICP of the members from T_static, and the counted points under it. */
+void
+weighUnderOwnMotion (const detail::ScanViews& views, const TargetOutline& outline, const Rigid2d& T_static,
+                     SegmentEvidence& evidence)
+{
+  weighUnderMotion (views, outline,
+                    detail::icpOnNearestPoints (views.source (), evidence.members, views.targetPoints (), T_static,
+                                                views.parameters ().overlap_radius),
+                    evidence);
+}
+
+/** The static half of the evidence of every source segment with at least \a min_points
+ *  points in the static world. */
+std::vector<SegmentEvidence>
+weighStaticSegments (const detail::ScanViews& views, const TargetOutline& outline, const JointResult& result,
+                     int min_points, double along_beam_steps)
+{
+  const Rigid2d T_static = result.cluster_motions[result.static_cluster];
+  std::vector<SegmentEvidence> weighed;
+  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
+    std::vector<int> members = detail::segmentPointsLabelled (segment, result.source_cluster, result.static_cluster);
+    if (static_cast<int> (members.size ()) >= min_points)
+      weighed.push_back (weighUnderStaticMotion (views, outline, std::move (members), T_static, along_beam_steps));
+  }
+  return weighed;
 }
 
 /** The static motion's own misfit as a variance: the median squared residual under it
@@ -249,17 +274,12 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
                                            JointResult& result)
 {
   checkResultAgainstScans ("separateSegmentsThatMovedSlightly", views.source (), views.target (), result);
-  checkTest (test, min_points);
+  checkTest ("separateSegmentsThatMovedSlightly", test, min_points);
   if (!canSeparateFromStaticWorld (views.source (), views.target (), result))
     return 0;
   const Rigid2d T_static = result.cluster_motions[result.static_cluster];
   const TargetOutline outline (views);
-  std::vector<SegmentEvidence> weighed;
-  for (const matching::ScanSegment& segment : views.sourceSegments ()) {
-    std::vector<int> members = detail::segmentPointsLabelled (segment, result.source_cluster, result.static_cluster);
-    if (static_cast<int> (members.size ()) >= min_points)
-      weighed.push_back (weighUnderStaticMotion (views, outline, std::move (members), T_static, test.along_beam_steps));
-  }
+  std::vector<SegmentEvidence> weighed = weighStaticSegments (views, outline, result, min_points, test.along_beam_steps);
   const double misfit_variance = staticMisfitVariance (weighed);
   int separated = 0;
   for (SegmentEvidence& evidence : weighed)
@@ -270,6 +290,25 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
   if (separated > 0)
     numberLargestFirst (result);
   return separated;
+}
+
+bool
+detail::staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members,
+                          const Rigid2d& T, const StaticFitCheck& check)
+{
+  checkTest ("staticFitRefutes", check.test, check.min_points);
+  if (result.static_cluster < 0 || result.static_cluster >= static_cast<int> (result.cluster_motions.size ()))
+    return false;
+  const TargetOutline outline (views);
+  const SlightMotionTest& test = check.test;
+  const double misfit_variance =
+      staticMisfitVariance (weighStaticSegments (views, outline, result, check.min_points, test.along_beam_steps));
+  SegmentEvidence evidence = weighUnderStaticMotion (views, outline, members,
+                                                     result.cluster_motions[result.static_cluster],
+                                                     test.along_beam_steps);
+  weighUnderMotion (views, outline, T, evidence);
+  const auto [d, used] = deviance (evidence, views.parameters ().range_noise, misfit_variance);
+  return -d >= test.min_deviance && -d >= test.min_mean_deviance * used;  // the roles of the motions swapped
 }
 
 int

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
@@ -651,6 +652,111 @@ TEST (JointSlidSegments, BeamsWithoutAReturnCountOnlyAgainstASurfaceTheSensorRet
   JointResult halved = allStaticResult (halved_source, target);
   ASSERT_EQ (separateSegmentsTheTargetSeesThrough (halved_source, target, parameters, 2, halved), 1);
   EXPECT_NE (clusterOf (halved_object, kTruck, halved), halved.static_cluster);
+}
+
+/** A standing board 2 m ahead (y = 2 m, x in [−0.6, 0.6] m, or ±\a half_length) whose
+ *  right half stands 4 cm farther back (\a step; 0: flat), seen twice from the origin, where the target
+ *  sees both of its ends 0.3 m farther right but the step where it was: free space says
+ *  it slid 0.3 m, its shape (the step, which a slide would misplace by 4 cm over 0.3 m)
+ *  says it stood. Range noise on a rough real surface does the same: on the real
+ *  overtakes bag, walls slid 0.2 m (scan 140) and 0.26 m (scan 150). With no step
+ *  (flat), nothing tells the slide from a real one. */
+struct SteppedBoard
+{
+  Eigen::Matrix2Xd source, target;
+  std::vector<int> source_object, target_object;
+
+  explicit SteppedBoard (double step, double half_length = 0.6)
+  {
+    source = rayCast (
+        {{8.0, -20.0, 20.0, kWall}, {2.0, -half_length, 0.0, kTruck}, {2.0 + step, 0.0, half_length, kTruck}},
+        source_object);
+    target = rayCast ({{8.0, -20.0, 20.0, kWall},
+                       {2.0, 0.3 - half_length, 0.0, kTruck},
+                       {2.0 + step, 0.0, 0.3 + half_length, kTruck}},
+                      target_object);
+  }
+
+  /** The board's cluster after \a step (a free-space step on allStaticResult ()), given
+   *  \a static_fit or not. */
+  template <typename Step>
+  int
+  slid (Step step, const pcl_crf::joint::SlightMotionTest* static_fit, JointResult& result) const
+  {
+    result = allStaticResult (source, target);
+    EXPECT_LE (step (result, static_fit), 1);
+    return clusterOf (source_object, kTruck, result);
+  }
+};
+
+/** Runs both free-space steps that slide static points on \a board (SteppedBoard::slid ()):
+ *  the slide found by each, without the static fit's check and with it. */
+void
+expectSlides (const SteppedBoard& board, bool kept_when_checked)
+{
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  const pcl_crf::joint::SlightMotionTest test;
+  const auto slid_segments = [&] (JointResult& result, const pcl_crf::joint::SlightMotionTest* static_fit) {
+    return separateSegmentsTheTargetSeesThrough (board.source, board.target, parameters, 2, result, static_fit);
+  };
+  const auto free_space = [&] (JointResult& result, const pcl_crf::joint::SlightMotionTest* static_fit) {
+    return pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.target, parameters, result, static_fit);
+  };
+  for (const bool checked : {false, true}) {
+    for (const bool objects : {false, true}) {
+      SCOPED_TRACE (std::string (objects ? "separateObjectsInFreeSpace" : "separateSegmentsTheTargetSeesThrough") +
+                    (checked ? ", checked" : ", unchecked"));
+      JointResult result;
+      const pcl_crf::joint::SlightMotionTest* static_fit = checked ? &test : nullptr;
+      const int board_cluster = objects ? board.slid (free_space, static_fit, result)
+                                        : board.slid (slid_segments, static_fit, result);
+      if (checked && !kept_when_checked) {
+        EXPECT_EQ (result.cluster_motions.size (), 1u);
+        EXPECT_EQ (board_cluster, result.static_cluster);
+        continue;
+      }
+      ASSERT_GE (board_cluster, 0);
+      ASSERT_NE (board_cluster, result.static_cluster);
+      // Measured: 0.294–0.299 m along the board, within 0.02 m across it.
+      EXPECT_NEAR (result.cluster_motions[board_cluster].translation ().x (), 0.3, 0.02);
+      EXPECT_NEAR (result.cluster_motions[board_cluster].translation ().y (), 0.0, 0.02);
+    }
+  }
+}
+
+TEST (JointFreeSpaceSlides, ASlideTheStaticMotionFitsBetterIsDropped)
+{
+  // The static motion misplaces no point of the stepped board; the slide misplaces
+  // the 0.3 m before the step by 4 cm, about 20 points, each by more than 2 of its σ
+  // (range noise 1 cm, half a beam spacing 0.9 cm): D far above 32 and above one
+  // variance per point of the board's 66.
+  expectSlides (SteppedBoard (0.04), false);
+}
+
+TEST (JointFreeSpaceSlides, ASlideAlongAFlatSideIsKept)
+{
+  expectSlides (SteppedBoard (0.0), true);
+}
+
+TEST (JointFreeSpaceSlides, ASmallStepOnALongBoardIsNotEnoughEvidence)
+{
+  // A 3 cm step on a 2 m board (106 points): the slide's deviance passes 32 but not
+  // one variance per point, since along one surface the residuals are correlated.
+  expectSlides (SteppedBoard (0.03, 1.0), true);
+}
+
+TEST (JointFreeSpaceSlides, AStaticFitTestOutOfRangeIsAnError)
+{
+  const SteppedBoard board (0.04);
+  const pcl_crf::matching::SegmentMotionParameters parameters;
+  pcl_crf::joint::SlightMotionTest bad;
+  bad.min_deviance = 0.0;
+  JointResult result = allStaticResult (board.source, board.target);
+  EXPECT_THROW (separateSegmentsTheTargetSeesThrough (board.source, board.target, parameters, 2, result, &bad),
+                std::invalid_argument);
+  result = allStaticResult (board.source, board.target);
+  EXPECT_THROW (pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.target, parameters, result, &bad),
+                std::invalid_argument);
 }
 
 TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)

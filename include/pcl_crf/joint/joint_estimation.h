@@ -433,13 +433,18 @@ separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
  *  \param[in] min_seen_through the fewest seen-through points that make a segment worth
  *  testing (≥ 1; JointParameters::segment_min_points_seen_through)
  *  \param[in,out] result a joint result over \a source whose matches index \a target
+ *  \param[in] static_fit when given, a shift is dropped when the static motion fits the
+ *  segment to the target's outline better than the shifted motion by this test's
+ *  deviance, the roles of separateSegmentsThatMovedSlightly ()'s motions swapped
+ *  (JointParameters::check_free_space_motions_against_the_static_fit)
  *  \return the number of clusters added (0 without a static world)
  *  \throws std::invalid_argument when the result's sizes disagree with each other or with
- *  \a source, a match is not a target point, or min_seen_through < 1. */
+ *  \a source, a match is not a target point, min_seen_through < 1 or \a static_fit is
+ *  out of range. */
 int
 separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, int min_seen_through,
-                                      JointResult& result);
+                                      JointResult& result, const SlightMotionTest* static_fit = nullptr);
 
 /** \brief Separates from the static world the objects its motion puts where the source
  *  sensor saw through: a vehicle driving alongside shows a long side that slides along
@@ -486,12 +491,19 @@ separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eige
  *  \param[in] parameters segmentation, overlap radius and largest displacement (the
  *             matcher's segment parameters)
  *  \param[in,out] result a joint result for these scans
+ *  \param[in] static_fit when given, a slide is dropped when the static motion fits the
+ *             object to the target's outline better than the slid motion by this test's
+ *             deviance, the roles of separateSegmentsThatMovedSlightly ()'s motions
+ *             swapped: the points a rough surface's range noise put where the other
+ *             sensor saw through are no evidence against a motion that fits it
+ *             (JointParameters::check_free_space_motions_against_the_static_fit)
  *  \return the number of clusters added
- *  \throws std::invalid_argument when the result's sizes disagree with the scans or a
- *          match or cluster is out of range. */
+ *  \throws std::invalid_argument when the result's sizes disagree with the scans, a
+ *          match or cluster is out of range or \a static_fit is out of range. */
 int
 separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
-                            const matching::SegmentMotionParameters& parameters, JointResult& result);
+                            const matching::SegmentMotionParameters& parameters, JointResult& result,
+                            const SlightMotionTest* static_fit = nullptr);
 
 /** \brief Marks the outliers that moved away (JointResult::moved_away): every run of at
  *  least min_segment_points consecutive outlier points of one source segment

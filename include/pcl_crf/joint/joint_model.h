@@ -79,7 +79,8 @@ struct JointParameters
    *  spacing account for (slight_motion), becomes a cluster of its own
    *  (separateSegmentsThatMovedSlightly ()). */
   bool separate_segments_that_moved_slightly = true;
-  /** how separateSegmentsThatMovedSlightly () weighs a segment's evidence. */
+  /** how separateSegmentsThatMovedSlightly () weighs a segment's evidence, and
+   *  check_free_space_motions_against_the_static_fit the static world's. */
   SlightMotionTest slight_motion;
   /** true (default): clusters whose matches mostly repeat target points the static world
    *  explains become outliers (removeClustersTheStaticWorldExplains ()). */
@@ -106,6 +107,13 @@ struct JointParameters
    *  static motion gets a cluster of its own when sliding it to align its object end
    *  with a target segment's explains it better (separateSegmentsTheTargetSeesThrough ()). */
   bool separate_segments_the_target_sees_through = true;
+  /** true (default): a motion those two steps (separateObjectsInFreeSpace (),
+   *  separateSegmentsTheTargetSeesThrough ()) find for static points is dropped when the
+   *  static motion fits the points to the target's outline better by slight_motion's
+   *  deviance (at least min_deviance and min_mean_deviance per point, the roles of the
+   *  motions swapped): on a rough real surface range noise puts a few points where the
+   *  other sensor saw through. */
+  bool check_free_space_motions_against_the_static_fit = true;
   /** the fewest points of a segment the target must see through under the static
    *  motion before a shift of it is sought (one point alone may be range noise), at the
    *  model's resolution: on scans thinned by k for the model (thinningFactor ()),
