@@ -414,7 +414,7 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   // thinned by k above shows k times as many points over the same bearings.
   if (parameters.separate_segments_the_target_sees_through)
     detail::separateSegmentsTheTargetSeesThrough (
-        views, parameters.segment_min_points_seen_through * thinned.source.factor, result, check);
+        views, parameters.segment_min_points_seen_through * thinned.source.factor, result);
   if (parameters.separate_points_the_target_sees_through)
     detail::separatePointsTheTargetSeesThrough (views, result);
   if (parameters.separate_segments_that_moved_slightly)

@@ -178,8 +178,8 @@ removeClustersTheTargetSeesThrough (const ScanViews& views, JointResult& result)
 int
 removeClustersOnTheStaticOutline (const ScanViews& views, JointResult& result);
 
-/** The static world's answer to a motion that a free-space step found for some of its
- *  points: the slight-motion test with the roles swapped (staticFitRefutes ()). */
+/** The static world's answer to a motion that separateObjectsInFreeSpace () found for
+ *  some of its points: the slight-motion test with the roles swapped (staticFitRefutes ()). */
 struct StaticFitCheck
 {
   SlightMotionTest test;
@@ -206,8 +206,7 @@ int
 separateObjectsInFreeSpace (const ScanViews& views, JointResult& result, const StaticFitCheck* check = nullptr);
 
 int
-separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result,
-                                      const StaticFitCheck* check = nullptr);
+separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result);
 
 int
 separatePointsTheTargetSeesThrough (const ScanViews& views, JointResult& result);

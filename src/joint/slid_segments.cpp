@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 #include <string>
@@ -149,20 +148,10 @@ addCluster (const matching::ScanSegment& segment, const Rigid2d& T, const Target
   }
 }
 
-/** The points of \a segment. */
-std::vector<int>
-pointsOf (const matching::ScanSegment& segment)
-{
-  std::vector<int> points (static_cast<std::size_t> (segment.size ()));
-  std::iota (points.begin (), points.end (), segment.begin);
-  return points;
-}
-
 }  // namespace
 
 int
-detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result,
-                                              const StaticFitCheck* check)
+detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_seen_through, JointResult& result)
 {
   const Eigen::Matrix2Xd& source = views.source ();
   const matching::SegmentMotionParameters& parameters = views.parameters ();
@@ -191,8 +180,6 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
       continue;
     Rigid2d T = T_static;
     T.translation () += slide.shift;
-    if (check != nullptr && detail::staticFitRefutes (views, result, pointsOf (segment), T, *check))
-      continue;  // free space saw the noise of a rough surface the static motion fits
     addCluster (segment, T, slide.placement, result);
     ++added;
   }
@@ -204,13 +191,10 @@ detail::separateSegmentsTheTargetSeesThrough (const ScanViews& views, int min_se
 int
 separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, int min_seen_through,
-                                      JointResult& result, const SlightMotionTest* static_fit)
+                                      JointResult& result)
 {
-  const detail::ScanViews views (source, target, parameters);
-  if (static_fit == nullptr)
-    return detail::separateSegmentsTheTargetSeesThrough (views, min_seen_through, result);
-  const detail::StaticFitCheck check{*static_fit, parameters.min_segment_points};
-  return detail::separateSegmentsTheTargetSeesThrough (views, min_seen_through, result, &check);
+  return detail::separateSegmentsTheTargetSeesThrough (detail::ScanViews (source, target, parameters),
+                                                       min_seen_through, result);
 }
 
 }  // namespace joint

@@ -433,18 +433,13 @@ separatePointsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen:
  *  \param[in] min_seen_through the fewest seen-through points that make a segment worth
  *  testing (≥ 1; JointParameters::segment_min_points_seen_through)
  *  \param[in,out] result a joint result over \a source whose matches index \a target
- *  \param[in] static_fit when given, a shift is dropped when the static motion fits the
- *  segment to the target's outline better than the shifted motion by this test's
- *  deviance, the roles of separateSegmentsThatMovedSlightly ()'s motions swapped
- *  (JointParameters::check_free_space_motions_against_the_static_fit)
  *  \return the number of clusters added (0 without a static world)
  *  \throws std::invalid_argument when the result's sizes disagree with each other or with
- *  \a source, a match is not a target point, min_seen_through < 1 or \a static_fit is
- *  out of range. */
+ *  \a source, a match is not a target point, or min_seen_through < 1. */
 int
 separateSegmentsTheTargetSeesThrough (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, int min_seen_through,
-                                      JointResult& result, const SlightMotionTest* static_fit = nullptr);
+                                      JointResult& result);
 
 /** \brief Separates from the static world the objects its motion puts where the source
  *  sensor saw through: a vehicle driving alongside shows a long side that slides along

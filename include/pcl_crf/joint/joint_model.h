@@ -107,12 +107,11 @@ struct JointParameters
    *  static motion gets a cluster of its own when sliding it to align its object end
    *  with a target segment's explains it better (separateSegmentsTheTargetSeesThrough ()). */
   bool separate_segments_the_target_sees_through = true;
-  /** true (default): a motion those two steps (separateObjectsInFreeSpace (),
-   *  separateSegmentsTheTargetSeesThrough ()) find for static points is dropped when the
-   *  static motion fits the points to the target's outline better by slight_motion's
-   *  deviance (at least min_deviance and min_mean_deviance per point, the roles of the
-   *  motions swapped): on a rough real surface range noise puts a few points where the
-   *  other sensor saw through. */
+  /** true (default): a slide separateObjectsInFreeSpace () finds for static points is
+   *  dropped when the static motion fits the points to the target's outline better by
+   *  slight_motion's deviance (at least min_deviance and min_mean_deviance per point, the
+   *  roles of the motions swapped): on a rough real surface range noise puts a few
+   *  points where the other sensor saw through. */
   bool check_free_space_motions_against_the_static_fit = true;
   /** the fewest points of a segment the target must see through under the static
    *  motion before a shift of it is sought (one point alone may be range noise), at the
