@@ -634,6 +634,8 @@ detail::separateObjectsInFreeSpace (const ScanViews& views, JointResult& result,
   const Eigen::Matrix2Xd& target = views.target ();
   const matching::SegmentMotionParameters& parameters = views.parameters ();
   checkResultAgainstScans ("separateObjectsInFreeSpace", source, target, result);
+  if (check != nullptr)
+    checkStaticFitCheck ("separateObjectsInFreeSpace", *check);
   if (!canSeparateFromStaticWorld (source, target, result))
     return 0;
   FreeSpaceScene scene{views, source, target, parameters, {}, {}, {}, {}, {}};

@@ -200,6 +200,11 @@ bool
 staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members, const Rigid2d& T,
                   const StaticFitCheck& check);
 
+/** Throws std::invalid_argument, naming \a function, unless \a check's test and
+ *  min_points are in range (as separateSegmentsThatMovedSlightly () asks them). */
+void
+checkStaticFitCheck (const char* function, const StaticFitCheck& check);
+
 /** \a check, when given, drops every motion found that the static fit refutes
  *  (staticFitRefutes ()). */
 int

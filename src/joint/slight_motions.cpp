@@ -292,6 +292,12 @@ detail::separateSegmentsThatMovedSlightly (const ScanViews& views, const SlightM
   return separated;
 }
 
+void
+detail::checkStaticFitCheck (const char* function, const StaticFitCheck& check)
+{
+  checkTest (function, check.test, check.min_points);
+}
+
 bool
 detail::staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members,
                           const Rigid2d& T, const StaticFitCheck& check)

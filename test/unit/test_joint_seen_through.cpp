@@ -751,6 +751,14 @@ TEST (JointFreeSpaceSlides, AStaticFitTestOutOfRangeIsAnError)
   bad.along_beam_steps = -1.0;
   EXPECT_THROW (pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.target, parameters, result, &bad),
                 std::invalid_argument);
+  // Also where no slide is found to weigh: a scene that did not move.
+  bad = {};
+  bad.min_mean_deviance = std::numeric_limits<double>::quiet_NaN ();
+  JointResult standing = allStaticResult (board.source, board.source);
+  EXPECT_THROW (pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.source, parameters, standing, &bad),
+                std::invalid_argument);
+  const pcl_crf::joint::SlightMotionTest good;
+  EXPECT_EQ (pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.source, parameters, standing, &good), 0);
 }
 
 TEST (JointSlidSegments, RejectsResultsThatDoNotFitTheScansAndANonPositiveEvidenceCount)
