@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -678,10 +679,11 @@ separateObjectsInFreeSpace (const Eigen::Matrix2Xd& source, const Eigen::Matrix2
                             const matching::SegmentMotionParameters& parameters, JointResult& result,
                             const SlightMotionTest* static_fit)
 {
-  if (static_fit == nullptr)
-    return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result);
-  const detail::StaticFitCheck check{*static_fit, parameters.min_segment_points};
-  return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result, &check);
+  const std::optional<detail::StaticFitCheck> check =
+      static_fit != nullptr ? std::optional (detail::StaticFitCheck{*static_fit, parameters.min_segment_points})
+                            : std::nullopt;
+  return detail::separateObjectsInFreeSpace (detail::ScanViews (source, target, parameters), result,
+                                             check ? &*check : nullptr);
 }
 
 }  // namespace joint

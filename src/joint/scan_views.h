@@ -195,7 +195,7 @@ struct StaticFitCheck
  *  places in view too, D = Σ (r(T)² − r(T_static)²) / σ² ≥ test.min_deviance and
  *  ≥ test.min_mean_deviance per point (r the distance to the outline, capped at
  *  overlap_radius; σ² as that test takes it, with the static world's current misfit).
- *  False without a static world. */
+ *  False without a static world. \a check is taken as valid (checkStaticFitCheck ()). */
 bool
 staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members, const Rigid2d& T,
                   const StaticFitCheck& check);

@@ -302,8 +302,7 @@ bool
 detail::staticFitRefutes (const ScanViews& views, const JointResult& result, const std::vector<int>& members,
                           const Rigid2d& T, const StaticFitCheck& check)
 {
-  checkTest ("staticFitRefutes", check.test, check.min_points);
-  if (result.static_cluster < 0 || result.static_cluster >= static_cast<int> (result.cluster_motions.size ()))
+  if (result.static_cluster < 0)
     return false;
   const TargetOutline outline (views);
   const SlightMotionTest& test = check.test;

@@ -677,14 +677,13 @@ struct SteppedBoard
                       target_object);
   }
 
-  /** The board's cluster after \a step (a free-space step on allStaticResult ()), given
-   *  \a static_fit or not. */
-  template <typename Step>
+  /** The board's cluster after separateObjectsInFreeSpace () on allStaticResult (),
+   *  given \a static_fit or not. */
   int
-  slid (Step step, const pcl_crf::joint::SlightMotionTest* static_fit, JointResult& result) const
+  slid (const pcl_crf::joint::SlightMotionTest* static_fit, JointResult& result) const
   {
     result = allStaticResult (source, target);
-    EXPECT_LE (step (result, static_fit), 1);
+    EXPECT_LE (pcl_crf::joint::separateObjectsInFreeSpace (source, target, {}, result, static_fit), 1);
     return clusterOf (source_object, kTruck, result);
   }
 };
@@ -695,15 +694,11 @@ struct SteppedBoard
 void
 expectSlides (const SteppedBoard& board, bool kept_when_checked)
 {
-  const pcl_crf::matching::SegmentMotionParameters parameters;
   const pcl_crf::joint::SlightMotionTest test;
-  const auto free_space = [&] (JointResult& result, const pcl_crf::joint::SlightMotionTest* static_fit) {
-    return pcl_crf::joint::separateObjectsInFreeSpace (board.source, board.target, parameters, result, static_fit);
-  };
   for (const bool checked : {false, true}) {
     SCOPED_TRACE (checked ? "checked" : "unchecked");
     JointResult result;
-    const int board_cluster = board.slid (free_space, checked ? &test : nullptr, result);
+    const int board_cluster = board.slid (checked ? &test : nullptr, result);
     if (checked && !kept_when_checked) {
       EXPECT_EQ (result.cluster_motions.size (), 1u);
       EXPECT_EQ (board_cluster, result.static_cluster);
