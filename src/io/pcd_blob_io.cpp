@@ -5,7 +5,9 @@
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -177,6 +179,122 @@ convertFields (const pcl::PCLPointCloud2& blob, const std::vector<PcdField>& fie
   return converted;
 }
 
+/** \brief The PCD header's DATA encodings, as PCDReader::readHeader () numbers them. */
+enum PcdEncoding : int
+{
+  kAscii = 0,
+  kBinary = 1,
+  kBinaryCompressed = 2
+};
+
+/** \brief How many points the ASCII body of \a path after byte \a data_index holds: its
+ *  lines with a value on them (PCL's reader skips blank lines and comments). */
+std::size_t
+asciiPointCount (const std::string& path, std::size_t data_index)
+{
+  std::ifstream in (path, std::ios::binary);
+  in.seekg (static_cast<std::streamoff> (data_index));
+  std::size_t count = 0;
+  std::string line;
+  while (std::getline (in, line)) {
+    const auto first = line.find_first_not_of (" \t\r");
+    count += first != std::string::npos && line[first] != '#' ? 1 : 0;
+  }
+  return count;
+}
+
+/** \brief The largest point count the header of \a path declares, in POINTS or as WIDTH
+ *  x HEIGHT (0 for words that are not counts: PCL's reader names those). */
+double
+declaredPointCount (const std::string& path)
+{
+  const auto count = [&path] (const char* keyword) {
+    const std::vector<std::string> words = headerLine (path, keyword);
+    char* end = nullptr;
+    const double value = words.size () == 1 ? std::strtod (words[0].c_str (), &end) : 0.0;
+    return end != nullptr && *end == '\0' && value > 0.0 ? value : 0.0;
+  };
+  return std::max (count ("POINTS"), count ("WIDTH") * count ("HEIGHT"));
+}
+
+/** \brief Checks, before PCL's reader allocates the cloud the header declares, that a
+ *  file of its size can hold that many points (each takes a byte at the least, a
+ *  binary_compressed byte unpacks to at most 88 (see checkBodySize ())).
+ *  \throws DatasetError naming the file and both counts */
+void
+checkDeclaredPointCount (const std::string& path)
+{
+  constexpr double kMostPointsPerByte = 88.0;
+  const double file_size = static_cast<double> (std::filesystem::file_size (path));
+  const double declared = declaredPointCount (path);
+  if (declared > kMostPointsPerByte * file_size) {
+    std::ostringstream what;
+    what << path << ": the header declares " << std::setprecision (15) << declared << " points, more than a file of "
+         << file_size << " bytes can hold";
+    throw DatasetError (what.str ());
+  }
+}
+
+/** \brief The two sizes a binary_compressed body starts with. */
+struct CompressedSizes
+{
+  std::uint32_t compressed = 0;
+  std::uint32_t uncompressed = 0;
+};
+
+CompressedSizes
+compressedSizes (const std::string& path, std::size_t data_index)
+{
+  std::ifstream in (path, std::ios::binary);
+  in.seekg (static_cast<std::streamoff> (data_index));
+  CompressedSizes sizes;
+  in.read (reinterpret_cast<char*> (&sizes.compressed), sizeof (sizes.compressed));
+  in.read (reinterpret_cast<char*> (&sizes.uncompressed), sizeof (sizes.uncompressed));
+  return sizes;
+}
+
+/** \brief Checks that the body of \a path holds the points its header declares, before
+ *  PCL reads it. PCL's reader trusts the header: it reads past the end of a short binary
+ *  body, crashes on a compressed one whose sizes disagree with it, first allocates
+ *  whatever a corrupt POINTS asks for, and drops data beyond POINTS without a word.
+ *  \throws DatasetError naming the file, the count declared and the count found */
+void
+checkBodySize (const std::string& path, const pcl::PCLPointCloud2& header, int encoding, std::size_t data_index)
+{
+  const std::size_t points = static_cast<std::size_t> (header.width) * header.height;
+  const std::size_t step = header.point_step;
+  const std::size_t file_size = std::filesystem::file_size (path);
+  const std::size_t body = file_size > data_index ? file_size - data_index : 0;
+  const std::string declared = path + ": the header declares " + std::to_string (points) + " points (WIDTH x HEIGHT, POINTS)";
+  if (encoding == kAscii) {
+    const std::size_t found = asciiPointCount (path, data_index);
+    if (found != points)
+      throw DatasetError (declared + ", the ascii data hold " + std::to_string (found));
+    return;
+  }
+  if (encoding == kBinary) {
+    if (body < points * step || body / step > points)
+      throw DatasetError (declared + " of " + std::to_string (step) + " bytes, the binary data hold " +
+                          std::to_string (body) + " bytes");
+    return;
+  }
+  if (encoding != kBinaryCompressed)
+    throw DatasetError (path + ": unknown DATA encoding (ascii, binary or binary_compressed)");
+  // LZF, which binary_compressed uses, unpacks 3 bytes to at most 264: a body that claims
+  // more is corrupt, however the header agrees with it.
+  constexpr std::size_t kMostUnpackedPerByte = 88;
+  const CompressedSizes sizes = body >= 8 ? compressedSizes (path, data_index) : CompressedSizes{};
+  if (body < 8 || body - 8 < sizes.compressed)
+    throw DatasetError (path + ": the binary_compressed data are truncated (" + std::to_string (body) +
+                        " bytes after the header, " + std::to_string (sizes.compressed) + " compressed bytes declared)");
+  if (sizes.uncompressed != points * step)
+    throw DatasetError (declared + " of " + std::to_string (step) + " bytes, the binary_compressed data unpack to " +
+                        std::to_string (sizes.uncompressed) + " bytes");
+  if (sizes.uncompressed > kMostUnpackedPerByte * static_cast<std::size_t> (sizes.compressed))
+    throw DatasetError (path + ": " + std::to_string (sizes.compressed) + " compressed bytes cannot unpack to the " +
+                        std::to_string (sizes.uncompressed) + " bytes declared (corrupt binary_compressed data)");
+}
+
 }  // namespace
 
 pcl::PCLPointCloud2
@@ -184,6 +302,7 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
 {
   if (!std::filesystem::is_regular_file (path))
     throw DatasetError (path + ": file not found");
+  checkDeclaredPointCount (path);  // PCL's readHeader () allocates the declared cloud
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;
   Eigen::Vector4f origin;
@@ -195,6 +314,7 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
     throw DatasetError (path + ": not a PCD file (unreadable header, or no FIELDS/SIZE/TYPE)");
   if (static_cast<std::size_t> (blob.width) * blob.height == 0)
     throw DatasetError (path + ": PCD header declares no points");
+  checkBodySize (path, blob, data_type, data_index);
   bool exact = true;
   for (const auto& field : fields)
     exact = blob.fields[checkField (blob, field, path)].datatype == field.datatype && exact;

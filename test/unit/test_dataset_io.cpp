@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -36,6 +37,50 @@ makeSmallPair ()
   pair.odometry.T_source_target = pcl_crf::makeRigid2d (0.1, 0.001, 0.002);
   pair.odometry.covariance = Eigen::Vector3d (1e-4, 2e-4, 3e-5).asDiagonal ();
   return pair;
+}
+
+/** The small pair's target scan (x y z label, 3 points) as a PCD of \a encoding
+ *  ("binary" or "binary_compressed") whose header declares \a declared points, with
+ *  the first \a stored points in its body. The compressed body is LZF of literal runs
+ *  only (valid LZF, as any reader unpacks it), fields one after another as PCL stores
+ *  them; \a unpacked_size overrides the size it says it unpacks to (< 0: the true one). */
+std::string
+targetPcd (const std::string& encoding, int declared, int stored, long long unpacked_size = -1)
+{
+  const ScanPair pair = makeSmallPair ();
+  std::string fields[4];  // x, y, z, label of every stored point
+  for (int i = 0; i < stored; ++i) {
+    const float x = static_cast<float> (pair.target (0, i)), y = static_cast<float> (pair.target (1, i)), z = 0.0f;
+    const auto label = static_cast<std::uint32_t> (pair.target_object[i]);
+    fields[0].append (reinterpret_cast<const char*> (&x), 4);
+    fields[1].append (reinterpret_cast<const char*> (&y), 4);
+    fields[2].append (reinterpret_cast<const char*> (&z), 4);
+    fields[3].append (reinterpret_cast<const char*> (&label), 4);
+  }
+  std::string body;
+  if (encoding == "binary") {
+    for (int i = 0; i < stored; ++i)
+      for (const std::string& field : fields)
+        body += field.substr (4 * i, 4);
+  }
+  else {
+    const std::string unpacked = fields[0] + fields[1] + fields[2] + fields[3];
+    std::string packed;
+    for (std::size_t at = 0; at < unpacked.size (); at += 32) {
+      const std::string run = unpacked.substr (at, 32);
+      packed += static_cast<char> (run.size () - 1);
+      packed += run;
+    }
+    const auto packed_size = static_cast<std::uint32_t> (packed.size ());
+    const auto unpacked_bytes = static_cast<std::uint32_t> (unpacked_size < 0 ? unpacked.size () : unpacked_size);
+    body.append (reinterpret_cast<const char*> (&packed_size), 4);
+    body.append (reinterpret_cast<const char*> (&unpacked_bytes), 4);
+    body += packed;
+  }
+  const std::string count = std::to_string (declared);
+  return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z label\nSIZE 4 4 4 4\n"
+         "TYPE F F F U\nCOUNT 1 1 1 1\nWIDTH " + count + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + count +
+         "\nDATA " + encoding + "\n" + body;
 }
 
 class DatasetIo : public ::testing::Test
@@ -155,6 +200,70 @@ TEST_F (DatasetIo, TruncatedPcdIsAnError)
   replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 30");
   replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 30");
   expectLoadError (pair_dir, "target.pcd");
+}
+
+TEST_F (DatasetIo, AsciiRowsBeyondTheDeclaredPointsAreAnError)
+{
+  // PCL's reader takes the first POINTS rows and drops the rest without a word.
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 2");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 2");
+  expectLoadError (pair_dir, "target.pcd: the header declares 2 points (WIDTH x HEIGHT, POINTS), the ascii data hold 3");
+}
+
+TEST_F (DatasetIo, APointCountNoFileOfItsSizeHoldsIsAnErrorBeforeAllocating)
+{
+  // PCL's readHeader () allocates the declared cloud: 4e9 points failed with a bare
+  // std::bad_alloc, 4e8 took 7.8 GB before the data were found short.
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 4000000000");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 4000000000");
+  expectLoadError (pair_dir, "target.pcd: the header declares 4000000000 points, more than a file of");
+}
+
+TEST_F (DatasetIo, BinaryBodiesAreReadWhenTheyHoldTheDeclaredPoints)
+{
+  const std::string pair_dir = writeSmallPair ();
+  const ScanPair expected = pcl_crf::loadScanPair (pair_dir);
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  for (const std::string encoding : {"binary", "binary_compressed"}) {
+    std::ofstream (target, std::ios::binary) << targetPcd (encoding, 3, 3);
+    const ScanPair read = pcl_crf::loadScanPair (pair_dir);
+    EXPECT_EQ (read.target, expected.target) << encoding;
+    EXPECT_EQ (read.target_object, expected.target_object) << encoding;
+  }
+}
+
+TEST_F (DatasetIo, ABinaryBodyOfAnotherSizeIsAnError)
+{
+  // PCL read past the end of a short body, and dropped a longer one's extra points.
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  std::ofstream (target, std::ios::binary) << targetPcd ("binary", 3, 2);
+  expectLoadError (pair_dir, "target.pcd: the header declares 3 points (WIDTH x HEIGHT, POINTS) of 16 bytes, the "
+                             "binary data hold 32 bytes");
+  std::ofstream (target, std::ios::binary) << targetPcd ("binary", 2, 3);
+  expectLoadError (pair_dir, "target.pcd: the header declares 2 points (WIDTH x HEIGHT, POINTS) of 16 bytes, the "
+                             "binary data hold 48 bytes");
+}
+
+TEST_F (DatasetIo, ACompressedBodyThatDisagreesWithItsHeaderIsAnError)
+{
+  // PCL warned "Data corruption?" and then crashed (SIGSEGV) on these.
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  std::ofstream (target, std::ios::binary) << targetPcd ("binary_compressed", 3, 3, 0);
+  expectLoadError (pair_dir, "target.pcd: the header declares 3 points (WIDTH x HEIGHT, POINTS) of 16 bytes, the "
+                             "binary_compressed data unpack to 0 bytes");
+  std::ofstream (target, std::ios::binary) << targetPcd ("binary_compressed", 30, 3);
+  expectLoadError (pair_dir, "the binary_compressed data unpack to 48 bytes");
+  std::string truncated = targetPcd ("binary_compressed", 3, 3);
+  truncated.resize (truncated.size () - 5);
+  std::ofstream (target, std::ios::binary) << truncated;
+  expectLoadError (pair_dir, "target.pcd: the binary_compressed data are truncated");
+  // Sizes that agree with the header, but no LZF stream that short unpacks that far.
+  std::ofstream (target, std::ios::binary) << targetPcd ("binary_compressed", 1000, 3, 16000);
+  expectLoadError (pair_dir, "compressed bytes cannot unpack to the 16000 bytes declared");
 }
 
 TEST_F (DatasetIo, MissingMatchFieldIsNamed)
