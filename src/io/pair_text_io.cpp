@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -96,7 +97,11 @@ readPairText (const std::string& path, ScanPair& pair)
   if (!file)
     throw DatasetError (path + ": cannot open (missing pair.txt?)");
   LineReader reader{path};
-  bool seen_header = false, seen_sensor = false, seen_odometry = false, seen_covariance = false, seen_interval = false;
+  std::set<std::string> seen;  // the keys given at most once (every key but object)
+  const auto once = [&reader, &seen] (const std::string& key) {
+    if (!seen.insert (key).second)
+      reader.fail ("'" + key + "' given twice");
+  };
   std::string line;
   while (std::getline (file, line)) {
     ++reader.line_number;
@@ -104,35 +109,29 @@ readPairText (const std::string& path, ScanPair& pair)
     std::string key;
     if (!(in >> key) || key[0] == '#')
       continue;
-    if (!seen_header && key != kMagic)
+    if (seen.count (kMagic) == 0 && key != kMagic)
       reader.fail (std::string ("the first line must be '") + kMagic + " " + std::to_string (kVersion) + "'");
-    if (key == kMagic) {
+    if (key != "object")
+      once (key);
+    if (key == kMagic)
       readHeader (reader, in);
-      seen_header = true;
-    }
     else if (key == "sensor") {
       pair.sensor.beam_count = reader.integer (in, "beam count");
       pair.sensor.angle_min = reader.number (in, "angle_min");
       pair.sensor.angle_increment = reader.number (in, "angle_increment");
       pair.sensor.range_max = reader.number (in, "range_max");
-      seen_sensor = true;
     }
     else if (key == "odometry") {
       const double x = reader.number (in, "odometry x");
       const double y = reader.number (in, "odometry y");
       const double theta = reader.number (in, "odometry theta");
       pair.odometry.T_source_target = makeRigid2d (x, y, theta);
-      seen_odometry = true;
     }
     else if (key == "odometry_covariance") {
       for (int k = 0; k < 9; ++k)
         pair.odometry.covariance (k / 3, k % 3) = reader.number (in, "odometry covariance entry");
-      seen_covariance = true;
     }
     else if (key == "interval") {
-      if (seen_interval)
-        reader.fail ("'interval' given twice");
-      seen_interval = true;
       pair.odometry.interval = reader.number (in, "interval");
       if (!(pair.odometry.interval > 0.0))
         reader.fail ("the interval between the scans must be > 0 s (leave the line out when unknown)");
@@ -144,14 +143,11 @@ readPairText (const std::string& path, ScanPair& pair)
     reader.expectEnd (in);
   }
   reader.line_number = 0;
-  if (!seen_header)
+  if (seen.count (kMagic) == 0)
     reader.fail ("empty file or missing header line");
-  if (!seen_sensor)
-    reader.fail ("missing 'sensor' line");
-  if (!seen_odometry)
-    reader.fail ("missing 'odometry' line");
-  if (!seen_covariance)
-    reader.fail ("missing 'odometry_covariance' line");
+  for (const char* key : {"sensor", "odometry", "odometry_covariance"})
+    if (seen.count (key) == 0)
+      reader.fail (std::string ("missing '") + key + "' line");
 }
 
 void

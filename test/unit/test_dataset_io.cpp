@@ -388,6 +388,28 @@ TEST_F (DatasetIo, PairTextErrorsNameTheLine)
   expectLoadError (pair_dir, "exactly one object must be the static world");
 }
 
+TEST_F (DatasetIo, AKeyGivenTwiceIsAnError)
+{
+  // The last of two odometry lines used to win without a word (a 139 m ego error).
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path text = fs::path (pair_dir) / "pair.txt";
+  for (const std::string key : {"sensor", "odometry", "odometry_covariance", "pcl_crf_pair"}) {
+    const std::string original = [&text] {
+      std::ifstream in (text);
+      std::stringstream buffer;
+      buffer << in.rdbuf ();
+      return buffer.str ();
+    }();
+    const std::string lines = "\n" + original;  // every line, the first one too, after a newline
+    const auto begin = lines.find ("\n" + key + " ") + 1;
+    const std::string line = lines.substr (begin, lines.find ('\n', begin) - begin + 1);
+    std::ofstream (text) << original << line;
+    expectLoadError (pair_dir, "'" + key + "' given twice");
+    std::ofstream (text) << original;
+  }
+  EXPECT_NO_THROW (pcl_crf::loadScanPair (pair_dir));
+}
+
 TEST_F (DatasetIo, NanInPairTextIsAnError)
 {
   const std::string pair_dir = writeSmallPair ();
