@@ -1,10 +1,13 @@
 #include <pcl_crf/logs/rosbag_log.h>
 
+#include <pcl_crf/io/dataset_io.h>
+
 // The ROS headers are only seen by this file; the CMake option PCL_CRF_WITH_ROSBAG
 // defines PCL_CRF_HAVE_ROSBAG and adds their include folders to it alone.
 #if defined(PCL_CRF_HAVE_ROSBAG) && PCL_CRF_HAVE_ROSBAG
 #include <geometry_msgs/PoseStamped.h>
 #include <rosbag/bag.h>
+#include <ros/exception.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
 #endif
@@ -63,6 +66,46 @@ requireTopic (const std::string& path, const std::vector<std::pair<std::string, 
       return;
     }
   throw LogError (path + ": no topic " + topic + " in the bag; it has: " + describeTopics (topics));
+}
+
+/** \brief What makes a LaserScan message unusable, or an empty string when nothing does:
+ *  an angle that is not finite, beams without a step between them, or no finite
+ *  positive maximum range (every beam would fall on one ray, or none be a return). */
+std::string
+laserScanProblem (const sensor_msgs::LaserScan& message)
+{
+  if (message.ranges.size () > static_cast<std::size_t> (kMaxBeamCount))
+    return std::to_string (message.ranges.size ()) + " beams, more than " + std::to_string (kMaxBeamCount);
+  if (!std::isfinite (message.angle_min))
+    return "angle_min is not a finite angle";
+  if (!std::isfinite (message.angle_increment) || message.angle_increment == 0.0f)
+    return "angle_increment must be a finite angle other than 0";
+  if (!std::isfinite (message.range_min) || !std::isfinite (message.range_max) || !(message.range_max > 0.0f))
+    return "range_min and range_max must be finite and range_max positive";
+  return {};
+}
+
+/** \brief What makes a PoseStamped message unusable, or an empty string: a position or
+ *  orientation that is not finite, or an orientation of zero length. */
+std::string
+poseProblem (const geometry_msgs::Pose& pose)
+{
+  const geometry_msgs::Point& p = pose.position;
+  const geometry_msgs::Quaternion& q = pose.orientation;
+  if (!std::isfinite (p.x) || !std::isfinite (p.y) || !std::isfinite (p.z))
+    return "the position is not finite";
+  const double norm = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  if (!std::isfinite (norm) || !(norm > 0.0))
+    return "the orientation is not a finite, non-zero quaternion";
+  return {};
+}
+
+/** \brief A LogError naming the bag, the topic and the message's time. */
+LogError
+messageError (const std::string& path, const rosbag::MessageInstance& message, const std::string& problem)
+{
+  return LogError (path + ": topic " + message.getTopic () + ", message at " + std::to_string (message.getTime ().toSec ()) +
+                   " s: " + problem);
 }
 
 LaserScanRecord
@@ -164,19 +207,26 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
         if (options.max_scans > 0 && log.scans.size () >= options.max_scans)
           continue;
         const auto scan = message.instantiate<sensor_msgs::LaserScan> ();
-        if (scan && !scan->ranges.empty ())
-          log.scans.push_back (toRecord (*scan));
+        if (!scan || scan->ranges.empty ())
+          continue;
+        const std::string problem = laserScanProblem (*scan);
+        if (!problem.empty ())
+          throw messageError (path, message, problem);
+        log.scans.push_back (toRecord (*scan));
         continue;
       }
       const auto pose = message.instantiate<geometry_msgs::PoseStamped> ();
       if (!pose)
         continue;
+      const std::string problem = poseProblem (pose->pose);
+      if (!problem.empty ())
+        throw messageError (path, message, problem);
       const double stamp = pose->header.stamp.isZero () ? message.getTime ().toSec () : pose->header.stamp.toSec ();
       samples[message.getTopic ()].emplace_back (
           stamp, makeRigid2d (pose->pose.position.x, pose->pose.position.y, yawOf (pose->pose.orientation)));
     }
   }
-  catch (const rosbag::BagException& error) {
+  catch (const ros::Exception& error) {  // BagException, and the serializer's StreamOverrunException
     throw LogError (path + ": cannot read the ROS bag (" + error.what () + ")");
   }
   if (log.scans.empty ())

@@ -164,6 +164,44 @@ TEST_F (LogRosbag, ErrorsNameTheBagAndTopic)
   EXPECT_THROW (pcl_crf::readRosbagLog (garbage), pcl_crf::LogError);
 }
 
+TEST_F (LogRosbag, ScansAndPosesThatAreNotFiniteAreErrors)
+{
+  // A NaN pose gave a NaN ego error (exit 0) or an object that never moved, and a zero
+  // angle step put every beam on one ray, all without a word.
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  pcl_crf::RosbagReadOptions options;
+  options.pose_topic = "/ego_pose";
+  const std::string path = (dir_ / "bad.bag").string ();
+  const auto expectReadError = [&] (const pcl_crf::LaserLog& log, const std::string& fragment) {
+    pcl_crf::writeRosbagLog (path, log, options);
+    try {
+      pcl_crf::readRosbagLog (path, options);
+      ADD_FAILURE () << "no exception; expected " << fragment;
+    }
+    catch (const pcl_crf::LogError& error) {
+      EXPECT_NE (std::string (error.what ()).find (fragment), std::string::npos) << error.what ();
+    }
+  };
+  pcl_crf::LaserLog log = smallLog ();
+  log.objects.clear ();
+  pcl_crf::writeRosbagLog (path, log, options);
+  EXPECT_NO_THROW (pcl_crf::readRosbagLog (path, options));
+  pcl_crf::LaserLog bad = log;
+  bad.scans[1].sensor.angle_increment = 0.0;
+  expectReadError (bad, "bad.bag: topic /scan, message at 1000.1");
+  expectReadError (bad, "angle_increment must be a finite angle other than 0");
+  bad = log;
+  bad.scans[2].sensor.range_max = std::nan ("");
+  expectReadError (bad, "range_min and range_max must be finite and range_max positive");
+  bad = log;
+  bad.scans[0].sensor.angle_min = std::nan ("");
+  expectReadError (bad, "angle_min is not a finite angle");
+  bad = log;
+  bad.scans[3].pose = makeRigid2d (std::nan (""), 0.0, 0.0);
+  expectReadError (bad, "topic /ego_pose, message at 1000.3");
+  expectReadError (bad, "the position is not finite");
+}
+
 TEST_F (LogRosbag, WithoutSupportEveryCallSaysHowToEnableIt)
 {
   if (pcl_crf::rosbagSupported ())
