@@ -86,9 +86,10 @@ printLogOptionsHelp ()
   print_info ("  --pose-topic T         ego reference pose topic (default: none, no reference motion)\n");
   print_info ("  --object-topics A,B    reference pose topics of other moving objects (default: none)\n");
   print_info ("  --laser-offset X,Y,TH  laser pose in the ego pose frame [m, m, rad] (default: 0,0,0;\n"
-              "                         the datmo bags of shared/data: -0.166,0.019,0)\n");
+              "                         the datmo bags of shared/data: -0.166,0.019,0; |X|, |Y| <= 100,\n"
+              "                         |TH| <= 2 pi)\n");
   print_info ("  --pose-delay S         use the pose stamped t+S for the scan stamped t [s] (default: 0;\n"
-              "                         the datmo bags: 0.025)\n");
+              "                         the datmo bags: 0.025; |S| <= 60)\n");
 }
 
 /** Reads the log options; false after a print_error. */
@@ -124,11 +125,28 @@ parseLogArguments (int argc, char** argv, LogArguments& args)
     while (std::getline (in, topic, ','))
       if (!topic.empty ())
         bag.object_topics.push_back (topic);
+    if (bag.object_topics.empty ()) {
+      pcl::console::print_error ("--object-topics needs comma-separated topic names, got '%s'.\n", objects.c_str ());
+      return false;
+    }
   }
   std::vector<double> offset{0.0, 0.0, 0.0};
   if (!numberListOption (argc, argv, "--laser-offset", offset, 3) ||
       !numberOption (argc, argv, "--pose-delay", bag.pose_delay))
     return false;
+  // Bounds far beyond any mounting: they catch degrees given for radians and corrupt values.
+  constexpr double kMostOffset = 100.0;  // [m]
+  constexpr double kMostDelay = 60.0;    // [s]
+  if (!(std::abs (offset[0]) <= kMostOffset) || !(std::abs (offset[1]) <= kMostOffset) ||
+      !(std::abs (offset[2]) <= 2.0 * M_PI)) {
+    pcl::console::print_error ("--laser-offset needs |X|, |Y| <= %g m and |TH| <= 2 pi rad (radians, not degrees).\n",
+                               kMostOffset);
+    return false;
+  }
+  if (!(std::abs (bag.pose_delay) <= kMostDelay)) {
+    pcl::console::print_error ("--pose-delay needs a delay of at most %g s either way.\n", kMostDelay);
+    return false;
+  }
   bag.T_pose_laser = makeRigid2d (offset[0], offset[1], offset[2]);
   if (bag.scan_topic.empty ()) {
     pcl::console::print_error ("--scan-topic needs a topic name.\n");
