@@ -21,13 +21,36 @@ movedSources (const PointPairs& pairs, const std::vector<Rigid2d>& motions)
   return moved;
 }
 
+/** Beams between chain neighbours e and e + 1 (consecutive pairs) that hold no pair:
+ *  round(Δφ / Δθ) − 1, Δφ their bearing difference, Δθ the scan's angular resolution
+ *  (the count matching::segmentScan () bounds in a run of missing returns). */
+long
+beamsBetween (const PointPairs& pairs, Eigen::Index e)
+{
+  const Eigen::Vector2d a = pairs.source.col (e), b = pairs.source.col (e + 1);
+  const double dphi = std::abs (std::atan2 (a.x () * b.y () - a.y () * b.x (), a.dot (b)));
+  return std::lround (dphi / pairs.angular_resolution) - 1;
+}
+
+/** The weighted neighbour feature of edge (e, e + 1) when both points share a cluster
+ *  (Eq. (5)): 1 / max(d, d_min), or 0 across more than options.weighted_neighbour_max_gap
+ *  beams without a pair. */
+double
+weightedNeighbour (const PointPairs& pairs, Eigen::Index e, double d, const FeatureOptions& options)
+{
+  const bool bounded = options.weighted_neighbour_max_gap >= 0 && pairs.angular_resolution > 0.0;
+  if (bounded && beamsBetween (pairs, e) > options.weighted_neighbour_max_gap)
+    return 0.0;
+  return 1.0 / std::max (d, options.min_neighbour_distance);
+}
+
 /** What the pairwise features of edge (i, i + 1) need: d = ||s_i − s_{i+1}|| and the moved points. */
 struct Edge
 {
   const std::vector<Eigen::Matrix2Xd>& moved;
   Eigen::Index i;
   double distance;
-  double inverse_distance;  // 1 / max(d, d_min)
+  double inverse_distance;  // weightedNeighbour (): 1 / max(d, d_min), or 0 across a gap
 
   /** Eq. (6): how much the pair's distance changes when s_i moves with k and s_{i+1} with l. */
   double
@@ -43,7 +66,7 @@ makeEdge (const PointPairs& pairs, const std::vector<Eigen::Matrix2Xd>& moved, s
 {
   const auto e = static_cast<Eigen::Index> (i);
   const double d = (pairs.source.col (e) - pairs.source.col (e + 1)).norm ();
-  return {moved, e, d, 1.0 / std::max (d, options.min_neighbour_distance)};
+  return {moved, e, d, weightedNeighbour (pairs, e, d, options)};
 }
 
 /** Pairwise feature rows of an edge, row a + S_i b for states (states_i[a], states_j[b]). */
@@ -266,7 +289,7 @@ chainPotentials (const PointPairs& pairs, const std::vector<Rigid2d>& motions, c
     moveNode (i + 1, moved_j);
     const auto e = static_cast<Eigen::Index> (i);
     const double d = (pairs.source.col (e) - pairs.source.col (e + 1)).norm ();
-    const double inverse_distance = 1.0 / std::max (d, options.min_neighbour_distance);
+    const double inverse_distance = weightedNeighbour (pairs, e, d, options);
     Eigen::Map<Eigen::MatrixXd> table = chain.pairwise (i);
     for (Eigen::Index b = 0; b < table.cols (); ++b)
       for (Eigen::Index a = 0; a < table.rows (); ++a)

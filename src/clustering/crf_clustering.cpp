@@ -180,6 +180,8 @@ validateParameters (const CrfClusteringParameters& p)
     fail ("features.min_neighbour_distance must be > 0 [m]");
   if (!(p.features.min_spacing > 0.0))
     fail ("features.min_spacing must be > 0 [m]");
+  if (p.features.weighted_neighbour_max_gap < -1)
+    fail ("features.weighted_neighbour_max_gap must be >= 0 beams, or -1 for no bound");
 }
 
 CrfClusteringResult

@@ -164,6 +164,8 @@ clusterFinalAssociations (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd
   clustering::CrfClusteringParameters settings = parameters.initial_clustering;
   settings.features = model.initial_clustering.features;
   settings.motion_fit = parameters.final_motion_fit;
+  if (parameters.bound_weighted_neighbours_by_missing_returns)
+    settings.features.weighted_neighbour_max_gap = model.matcher.parameters.candidates.segments.max_missing_returns;
   const clustering::ScanClustering scan =
       clustering::clusterScan (source, target, result.source_match, model.initial_clustering.weights, settings,
                                &odometry, clustering::UnpairedLabelling::Outlier);

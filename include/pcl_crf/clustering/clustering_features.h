@@ -34,6 +34,18 @@ struct FeatureOptions
   /** the two scales of the local features (sampling distance, beam spacing) are
    *  clamped to at least this [m]; default 0.01 m. */
   double min_spacing = 0.01;
+  /** chain neighbours with more than this many beams between them that hold no pair
+   *  (beams without a return, or returns without an association) share no weighted
+   *  neighbour feature (Eq. (5)); the neighbour (Eq. (4)) and stiffness (Eq. (6))
+   *  features still couple them. Across such a run their distance does not say that
+   *  they lie on one surface: the scan segmentation takes a run of more than 10
+   *  missing returns for a breakpoint (matching::SegmentMotionParameters::
+   *  max_missing_returns), while 1/d rewards two points 0.3 m apart with the same
+   *  bonus at 0.6 m range, 30 beams apart, as at 20 m, one beam apart. −1: no bound,
+   *  the paper's feature. An inference setting, not part of a model file (every model
+   *  is trained without a bound; with it, the shipped CRF-Clustering weights moved by
+   *  3 %): the joint model's final clustering sets it. Default −1. */
+  int weighted_neighbour_max_gap = -1;
 };
 
 /** \brief The inverse squared scales of the local features, kUnaryFeatureCount x n
@@ -92,7 +104,8 @@ allStates (std::size_t node_count, int cluster_count);
  *  - pairwise, edge (i, j = i + 1), states (k, l), d = ||s_i − s_j||:
  *    neighbour [k = l] (Eq. (4): its weight is λ1 − λ2, the only part of λ1, λ2 the
  *    distribution depends on), weighted neighbour [k = l] / max(d, d_min) [1/m]
- *    (Eq. (5)), stiffness | ||T_k s_i − T_l s_j|| − d | [m] (Eq. (6)), how much
+ *    (Eq. (5); 0 across a gap of more than FeatureOptions::weighted_neighbour_max_gap
+ *    beams), stiffness | ||T_k s_i − T_l s_j|| − d | [m] (Eq. (6)), how much
  *    the pair's distance changes when each point moves with its cluster.
  *  Rows follow crf::ChainFeatures with the states of \a states.
  *  \param[in] pairs the nodes (2 x n points)
