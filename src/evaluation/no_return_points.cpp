@@ -4,35 +4,65 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 #include <utility>
 
 namespace pcl_crf {
 
 namespace {
 
-/** The indices of the points of \a scan that are returns. */
+/** Hash of a point's exact coordinates. */
+struct ExactPointHash
+{
+  std::size_t
+  operator() (const std::pair<double, double>& p) const
+  {
+    const std::size_t x = std::hash<double> () (p.first), y = std::hash<double> () (p.second);
+    return x ^ (y + 0x9e3779b97f4a7c15ULL + (x << 6) + (x >> 2));
+  }
+};
+
+/** Calls \a visit (i, keep) for every point of \a scan, keep telling whether it is a
+ *  return (isReturn ()) at coordinates no earlier return of the scan has. */
+template <typename Visit> void
+visitReturns (const Eigen::Matrix2Xd& scan, double range_max, Visit visit)
+{
+  std::unordered_set<std::pair<double, double>, ExactPointHash> seen;
+  seen.reserve (static_cast<std::size_t> (scan.cols ()));
+  for (Eigen::Index i = 0; i < scan.cols (); ++i) {
+    const bool keep = isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second;
+    if (!visit (static_cast<int> (i), keep))
+      return;
+  }
+}
+
+/** The indices of the points of \a scan that are returns, each position once. */
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {
   std::vector<int> kept;
   kept.reserve (static_cast<std::size_t> (scan.cols ()));
-  for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    if (isReturn (scan.col (i).norm (), range_max))
-      kept.push_back (static_cast<int> (i));
+  visitReturns (scan, range_max, [&kept] (int i, bool keep) {
+    if (keep)
+      kept.push_back (i);
+    return true;
+  });
   return kept;
 }
 
-/** Whether a point of either scan of \a pair is not a return. */
+/** Whether a point of either scan of \a pair is left out (returnsOf ()). */
 bool
-holdsNoReturnPoint (const ScanPair& pair)
+leavesOutAPoint (const ScanPair& pair)
 {
-  const auto anyBeyond = [&pair] (const Eigen::Matrix2Xd& scan) {
-    for (Eigen::Index i = 0; i < scan.cols (); ++i)
-      if (!isReturn (scan.col (i).norm (), pair.sensor.range_max))
-        return true;
-    return false;
+  const auto leavesOut = [&pair] (const Eigen::Matrix2Xd& scan) {
+    bool left_out = false;
+    visitReturns (scan, pair.sensor.range_max, [&left_out] (int, bool keep) {
+      left_out = !keep;
+      return keep;
+    });
+    return left_out;
   };
-  return anyBeyond (pair.source) || anyBeyond (pair.target);
+  return leavesOut (pair.source) || leavesOut (pair.target);
 }
 
 /** The columns \a kept of \a points, in that order. */
@@ -86,14 +116,14 @@ public:
   void
   train (const std::vector<ScanPair>& training_pairs) override
   {
-    if (std::none_of (training_pairs.begin (), training_pairs.end (), holdsNoReturnPoint)) {
+    if (std::none_of (training_pairs.begin (), training_pairs.end (), leavesOutAPoint)) {
       method_->train (training_pairs);  // the usual case: no copy
       return;
     }
     std::vector<ScanPair> returns;
     returns.reserve (training_pairs.size ());
     for (const ScanPair& pair : training_pairs)
-      returns.push_back (holdsNoReturnPoint (pair) ? checkedReturns (pair).pair : pair);
+      returns.push_back (leavesOutAPoint (pair) ? checkedReturns (pair).pair : pair);
     method_->train (returns);
   }
 
@@ -115,7 +145,7 @@ public:
     const std::string problem = odometryProblem (pair.odometry);
     if (!problem.empty ())
       throw std::invalid_argument ("pair '" + pair.name + "': " + problem);
-    if (!holdsNoReturnPoint (pair))
+    if (!leavesOutAPoint (pair))
       return method_->predict (pair);  // the usual case: no copy of the pair
     const PairReturns returns = checkedReturns (pair);
     return liftToAllPoints (method_->predict (returns.pair), returns);

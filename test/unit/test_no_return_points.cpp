@@ -158,6 +158,49 @@ TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheMaximumRange)
   EXPECT_EQ (k, static_cast<std::size_t> (pair.source.cols ()));
 }
 
+TEST (NoReturnPoints, RepeatedPointsAreLeftOutOnceTheirFirstIsKept)
+{
+  // A converter's placeholder for beams without a return, or a scan of one point
+  // repeated: 20 000 copies made every kd-tree search visit them all (a minute a pair).
+  ScanPair pair;
+  pair.name = "repeated";
+  pair.sensor.range_max = 10.0;
+  pair.source.resize (2, 5);
+  pair.source << 1.0, 0.0, 1.0, 2.0, 0.0,  //
+      1.0, 0.0, 1.0, 2.0, 0.0;
+  pair.target.resize (2, 3);
+  pair.target << 1.0, 1.0, 3.0,  //
+      1.0, 1.0, 3.0;
+  const PairReturns returns = keepReturns (pair);
+  EXPECT_EQ (returns.source_index, (std::vector<int>{0, 1, 3}));
+  EXPECT_EQ (returns.target_index, (std::vector<int>{0, 2}));
+  // Through an evaluation method: the copies are left unmatched, and ICP runs on the
+  // distinct points in milliseconds.
+  const ScanPair street = loadScanPair (kTestDir + "pair_0016");
+  ScanPair copies = street;
+  copies.sensor.beam_count = 100000;
+  const Eigen::Index n = street.source.cols (), m = street.target.cols (), extra = 20000;
+  copies.source.conservativeResize (2, n + extra);
+  copies.target.conservativeResize (2, m + extra);
+  for (Eigen::Index k = 0; k < extra; ++k) {
+    copies.source.col (n + k) = street.source.col (0);
+    copies.target.col (m + k) = street.target.col (0);
+  }
+  copies.source_object.resize (static_cast<std::size_t> (n + extra), street.staticObjectId ());
+  copies.target_object.resize (static_cast<std::size_t> (m + extra), street.staticObjectId ());
+  copies.source_match.resize (static_cast<std::size_t> (n + extra), kNoMatch);
+  validateScanPair (copies, "copies");
+  const auto method = createEvaluationMethod ("icp");
+  const Prediction plain = method->predict (street);
+  const Prediction with_copies = method->predict (copies);
+  EXPECT_TRUE (with_copies.T_source_target.isApprox (plain.T_source_target, 0.0));
+  ASSERT_EQ (with_copies.source_match.size (), static_cast<std::size_t> (n + extra));
+  for (Eigen::Index k = 0; k < n; ++k)
+    EXPECT_EQ (with_copies.source_match[static_cast<std::size_t> (k)], plain.source_match[static_cast<std::size_t> (k)]);
+  for (Eigen::Index k = n; k < n + extra; ++k)
+    EXPECT_EQ (with_copies.source_match[static_cast<std::size_t> (k)], kNoMatch);
+}
+
 TEST (NoReturnPoints, AScanWithoutAReturnIsReportedByName)
 {
   ScanPair pair = loadScanPair (kTestDir + "pair_0016");

@@ -19,12 +19,17 @@ bool
 isReturn (double range, double range_max);
 
 /** \brief A pair reduced to its returns (isReturn with the pair's SensorInfo::range_max),
- *  with where each kept point came from. The reduced pair's labels and true matches are
- *  the kept points' (a true match onto a point left out becomes kNoMatch).
+ *  each position once, with where each kept point came from. The reduced pair's labels
+ *  and true matches are the kept points' (a true match onto a point left out becomes
+ *  kNoMatch).
  *
  *  A dataset should leave beams without a return out (data/README.md); one converted
  *  with them kept as points at the maximum range would otherwise show every method an
- *  arc that moves with the sensor.
+ *  arc that moves with the sensor. A point at the exact coordinates of an earlier
+ *  return of its scan (a converter's placeholder for a beam without a return, say) is
+ *  left out too: it is no return of another beam, and tens of thousands of them made
+ *  every kd-tree search visit them all (exact ties at distance 0 prune nothing: a
+ *  minute per pair).
  */
 struct PairReturns
 {
@@ -50,17 +55,17 @@ PairReturns
 keepReturns (const ScanPair& pair);
 
 /** \brief A prediction for the reduced pair of \a returns as one for the original pair:
- *  the points left out saw the background, so they join the predicted static world
- *  (outliers when there is none) without a match; matches index the original target
- *  scan.
+ *  the points left out saw the background (or repeat a kept point), so they join the
+ *  predicted static world (outliers when there is none) without a match; matches index
+ *  the original target scan.
  *  \throws std::invalid_argument when \a reduced does not fit the reduced pair. */
 Prediction
 liftToAllPoints (const Prediction& reduced, const PairReturns& returns);
 
 /** \brief \a method seeing only the returns of every pair (keepReturns) when it learns
  *  and when it predicts; its predictions are lifted back to every point
- *  (liftToAllPoints: the others join the static world, unmatched). Pairs without points at or beyond the maximum range go to
- *  \a method unchanged. A pair with no return in one of its scans is reported as an
+ *  (liftToAllPoints: the others join the static world, unmatched). Pairs without points at or beyond the maximum range, and
+ *  without repeated points, go to \a method unchanged. A pair with no return in one of its scans is reported as an
  *  std::invalid_argument naming the pair. createEvaluationMethod () wraps every method
  *  in it. */
 std::unique_ptr<EvaluationMethod>
