@@ -123,6 +123,7 @@ TEST_F (EvalTool, UnknownOptionsAndMissingValuesAreErrors)
       {"pcl_crf_eval", set + " --method --tolerance 0.2", "Option --method needs a value"},
       {"pcl_crf_eval", set + " --tolerance abc", "--tolerance needs a number, not 'abc'"},
       {"pcl_crf_eval", set + " --max-pairs 1.5", "--max-pairs needs a whole number >= 0"},
+      {"pcl_crf_eval", set + " --method icp,kmeans,icp", "--method names 'icp' twice"},
       {"pcl_crf_train", set + " --method crf-t -o " + (dir_ / "m").string () + " --bogus", "Unknown option '--bogus'"},
       {"pcl_crf_train", set + " -o " + (dir_ / "m").string () + " --method", "Option --method needs a value"},
   };
