@@ -126,6 +126,9 @@ validateSimulatorConfig (const SimulatorConfig& c)
   requireFinite (l.range_noise, "range noise (--noise)");
   if (l.range_noise < 0.0)
     fail ("range noise (--noise) must not be negative");
+  if (l.range_noise >= l.range_max)
+    fail ("range noise (--noise) must be below the maximum range (--range), got " + number (l.range_noise) +
+          " m against " + number (l.range_max) + " m");
   requireFinite (l.dropout_probability, "dropout probability (--dropout)");
   if (l.dropout_probability < 0.0 || l.dropout_probability >= 1.0)
     fail ("dropout probability (--dropout) must be in [0, 1)");
@@ -157,6 +160,9 @@ validateSimulatorConfig (const SimulatorConfig& c)
   if (c.scene == SceneType::Static && c.moving_count > 0)
     fail ("the static scene has no moving objects; drop --moving or choose another --scene");
   requireFinite (c.traffic.object_speed, "object speed (--object-speed)");
+  if (c.traffic.object_speed > kMaxSimulatedObjectSpeed)
+    fail ("object speed (--object-speed) must be at most " + number (kMaxSimulatedObjectSpeed) +
+          " m/s (negative: drawn per kind), got " + number (c.traffic.object_speed));
   requireFinite (c.traffic.legged_pedestrian_fraction, "legged pedestrian fraction");
   if (c.traffic.legged_pedestrian_fraction < 0.0 || c.traffic.legged_pedestrian_fraction > 1.0)
     fail ("legged pedestrian fraction must be in [0, 1]");

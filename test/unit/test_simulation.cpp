@@ -640,6 +640,9 @@ TEST (SimulatorConfig, RejectsBadSettings)
   rejects ([] (sim::SimulatorConfig& c) { c.scene = sim::SceneType::Static, c.moving_count = 2; });
   rejects ([] (sim::SimulatorConfig& c) { c.odometry_noise.y () = -0.1; });
   rejects ([] (sim::SimulatorConfig& c) { c.traffic.legged_pedestrian_fraction = 1.5; });
+  // Silent nonsense before: points 685 m away from a 30 m laser, and no mover at all.
+  rejects ([] (sim::SimulatorConfig& c) { c.laser.range_noise = c.laser.range_max; });
+  rejects ([] (sim::SimulatorConfig& c) { c.traffic.object_speed = 1e300; });
   rejects ([] (sim::SimulatorConfig& c) { c.name_prefix = "a/b"; });
   // A standing sensor is fine with consecutive scans.
   sim::SimulatorConfig standing;

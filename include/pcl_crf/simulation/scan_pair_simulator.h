@@ -38,6 +38,7 @@ constexpr int kMaxSimulatedBeams = 20000;        ///< beams per scan (--beams)
 constexpr double kMaxSimulatedRange = 1000.0;    ///< maximum range [m] (--range)
 constexpr double kMaxSimulatedTravel = 100.0;    ///< ego travel between the scans [m] (--travel, --speed / --scan-rate)
 constexpr double kMinSimulatedScanRate = 0.1;    ///< scan rate [Hz] (--scan-rate)
+constexpr double kMaxSimulatedObjectSpeed = 100.0;  ///< speed of a moving object [m/s] (--object-speed)
 
 /** \brief Every setting of the scan-pair simulator, with defaults. */
 struct SimulatorConfig
