@@ -248,7 +248,11 @@ public:
         throw std::invalid_argument ("no saved result for pair " + frame.pair.name + ": " +
                                      (dir / "prediction.txt").string () + " not found");
       frame.prediction = pcl_crf::loadPrediction (dir.string ());
-      frame.method = methodName (dir);
+      frame.method = savedValue (dir, "method", "saved result");
+      const std::string saved_pair = savedValue (dir, "pair", frame.pair.name);
+      if (saved_pair != frame.pair.name)
+        throw std::invalid_argument ((dir / "prediction.txt").string () + " is the result of pair " + saved_pair +
+                                     ", not of pair " + frame.pair.name);
     }
     std::string problem;
     if (frame.prediction && !vis::predictionFitsPair (frame.pair, *frame.prediction, problem))
@@ -257,18 +261,19 @@ public:
   }
 
 private:
-  /** The "method NAME" line of a saved prediction.txt. */
+  /** The value of the "\a key VALUE" line of a saved prediction.txt ("method", "pair"),
+   *  or \a fallback without one. */
   static std::string
-  methodName (const fs::path& dir)
+  savedValue (const fs::path& dir, const std::string& key, const std::string& fallback)
   {
     std::ifstream file (dir / "prediction.txt");
-    std::string key, value;
-    while (file >> key) {
-      if (key == "method" && file >> value)
+    std::string word, value;
+    while (file >> word) {
+      if (word == key && file >> value)
         return value;
       std::getline (file, value);
     }
-    return "saved result";
+    return fallback;
   }
 
   const ViewerArguments& args_;

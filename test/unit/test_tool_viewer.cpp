@@ -306,6 +306,16 @@ TEST_F (ToolViewer, ScreenshotOfASavedPredictionAndOfALog)
   std::string problem;
   ASSERT_TRUE (readPng (png_path, png, problem)) << problem;
   EXPECT_EQ (png.width, 400);
+  // a result saved for another pair of the same size, in this pair's folder, is not
+  // shown as this one's
+  pcl_crf::ScanPair other = pair;
+  other.name = "0001";
+  pcl_crf::savePrediction (other, prediction, "oracle", (dir_ / "other" / "0000").string ());
+  run = runTool ("pcl_crf_viewer", (dir_ / "set").string () + " --prediction " + (dir_ / "other").string () +
+                                       " --view prediction --size 400,300 --screenshot " + png_path);
+  EXPECT_EQ (run.exit_code, 1) << run.output;
+  EXPECT_NE (run.output.find ("prediction.txt is the result of pair 0001, not of pair 0000"), std::string::npos)
+      << run.output;
 
   // a CARMEN log of two scans of a square room, 181 beams, no ODOM
   std::ofstream log (dir_ / "tiny.log");
