@@ -630,17 +630,22 @@ TEST (JointEstimation, StandsStillAmongWalkingPeople)
   EXPECT_LT (rotation.back (), 0.01);                        // [rad]; measured 0.0044 (ICP: 0.044)
 }
 
-TEST (JointEstimation, TheFinalClusteringKeepsARealSmallCarThatTheWallsWouldPullIntoTheirMotion)
+const std::string kOvertakesBag = std::string (PCL_CRF_SHARED_DATA_DIR) + "/rosbag/overtakes.bag";
+
+/** Why the real overtakes bag cannot be read here, or an empty string. */
+std::string
+overtakesBagMissing ()
 {
-  // overtakes.bag, scans 57 → 58 (read as the README's pcl_crf_run line does): a
-  // 1/10-scale car 0.5 m from the sensor moves 5 cm against the walls. The ladder's
-  // associations follow its motion, but refitted to every pair's marginal the wall
-  // pairs pulled the car's motion to theirs and N_eff merged it into the static world.
-  const std::string path = std::string (PCL_CRF_SHARED_DATA_DIR) + "/rosbag/overtakes.bag";
-  if (!std::filesystem::is_regular_file (path))
-    GTEST_SKIP () << path << " is absent (the shared real-data folder is optional)";
-  if (!rosbagSupported ())
-    GTEST_SKIP () << "built without ROS bag support";
+  if (!std::filesystem::is_regular_file (kOvertakesBag))
+    return kOvertakesBag + " is absent (the shared real-data folder is optional)";
+  return rosbagSupported () ? "" : "built without ROS bag support";
+}
+
+/** Scans \a scan → \a scan + 1 of the overtakes bag, labelled, read as the README's
+ *  pcl_crf_run line does. */
+ScanPair
+overtakesPair (std::size_t scan)
+{
   LaserLogReadOptions read;
   read.rosbag.pose_topic = "/ego_pose";
   read.rosbag.object_topics = {"/red_pose"};
@@ -649,7 +654,19 @@ TEST (JointEstimation, TheFinalClusteringKeepsARealSmallCarThatTheWallsWouldPull
   read.carmen.max_range = 8.0;
   LogPairOptions labels;
   labels.label_points = true;
-  const ScanPair pair = makeLogPair (readLaserLog (path, read), 57, labels);
+  return makeLogPair (readLaserLog (kOvertakesBag, read), scan, labels);
+}
+
+TEST (JointEstimation, TheFinalClusteringKeepsARealSmallCarThatTheWallsWouldPullIntoTheirMotion)
+{
+  // overtakes.bag, scans 57 → 58 (read as the README's pcl_crf_run line does): a
+  // 1/10-scale car 0.5 m from the sensor moves 5 cm against the walls. The ladder's
+  // associations follow its motion, but refitted to every pair's marginal the wall
+  // pairs pulled the car's motion to theirs and N_eff merged it into the static world.
+  const std::string missing = overtakesBagMissing ();
+  if (!missing.empty ())
+    GTEST_SKIP () << missing;
+  const ScanPair pair = overtakesPair (57);
   const auto v_with = [&pair] (clustering::MotionFit fit) {
     joint::JointParameters parameters;
     parameters.sensor = pair.sensor;
@@ -668,20 +685,10 @@ TEST (JointEstimation, TheFinalClusteringJoinsNoWorldSegmentToACarAcrossARunOfMi
   // 1/10-scale car 0.5–0.6 m from the sensor moves a few cm; the world's next returns
   // come after more than 10 beams without one. The final CRF-Clustering's weighted
   // neighbour feature (1/d of a 0.3 m gap) joined world points there to the car.
-  const std::string path = std::string (PCL_CRF_SHARED_DATA_DIR) + "/rosbag/overtakes.bag";
-  if (!std::filesystem::is_regular_file (path))
-    GTEST_SKIP () << path << " is absent (the shared real-data folder is optional)";
-  if (!rosbagSupported ())
-    GTEST_SKIP () << "built without ROS bag support";
-  LaserLogReadOptions read;
-  read.rosbag.pose_topic = "/ego_pose";
-  read.rosbag.object_topics = {"/red_pose"};
-  read.rosbag.T_pose_laser = makeRigid2d (-0.166, 0.019, 0.0);
-  read.rosbag.pose_delay = 0.025;
-  read.carmen.max_range = 8.0;
-  LogPairOptions labels;
-  labels.label_points = true;
-  const ScanPair pair = makeLogPair (readLaserLog (path, read), 74, labels);
+  const std::string missing = overtakesBagMissing ();
+  if (!missing.empty ())
+    GTEST_SKIP () << missing;
+  const ScanPair pair = overtakesPair (74);
   const auto world_points_with_the_car = [&pair] (bool bound) {
     joint::JointParameters parameters;
     parameters.sensor = pair.sensor;
