@@ -66,6 +66,22 @@ firstIndexOutside (const std::vector<Index>& indices, std::size_t size)
   return -1;
 }
 
+/** \brief The position in \a indices of the first index that repeats an earlier one, or
+ *  -1 when none does. Every index must be a point of a cloud of \a size points
+ *  (firstIndexOutside ()). */
+template <typename Index> long
+firstRepeatedIndex (const std::vector<Index>& indices, std::size_t size)
+{
+  std::vector<bool> seen (size, false);
+  for (std::size_t k = 0; k < indices.size (); ++k) {
+    const auto i = static_cast<std::size_t> (indices[k]);
+    if (seen[i])
+      return static_cast<long> (k);
+    seen[i] = true;
+  }
+  return -1;
+}
+
 /** \brief Makes a PCL cloud (z = 0) from a 2 x N matrix. */
 template <typename PointT> void
 fromMatrix2X (const Eigen::Matrix2Xd& xy, pcl::PointCloud<PointT>& cloud)

@@ -199,6 +199,13 @@ TYPED_TEST (CRFClustererTest, BadInputGivesAnEmptyResult)
   expectEmpty ("source index out of range");
   (*outside)[2] = -5;
   expectEmpty ("negative source index");
+  (*outside)[2] = 1;
+  expectEmpty ("repeated source index");
+  auto twice = pcl::make_shared<pcl::Indices> ();  // every point twice: once a crash (writes past a buffer)
+  for (int i = 0; i < static_cast<int> (this->scene.source->size ()); ++i)
+    twice->insert (twice->end (), {i, i});
+  this->clusterer.setIndices (twice);
+  expectEmpty ("every source index twice");
   this->clusterer.setIndices (pcl::IndicesPtr ());  // the whole cloud again
 
   this->clusterer.setMaximumIterations (0);

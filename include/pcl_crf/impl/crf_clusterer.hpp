@@ -84,6 +84,14 @@ pcl_crf::CRFClusterer<PointT>::prepare (Eigen::Matrix2Xd& source, Eigen::Matrix2
                getClassName ().c_str (), static_cast<int> ((*indices_)[outside]), outside, input_->size ());
     return false;
   }
+  const long repeated = firstRepeatedIndex (*indices_, input_->size ());
+  if (repeated >= 0)
+  {
+    PCL_ERROR ("[pcl_crf::%s::extract] source index %d (position %ld of the indices) is given twice: every "
+               "point is one node of the chain\n",
+               getClassName ().c_str (), static_cast<int> ((*indices_)[repeated]), repeated);
+    return false;
+  }
   // Source: the finite points of indices_, in cloud (beam) order; target: every point.
   std::vector<int> column (input_->size (), -1);
   source.resize (2, static_cast<Eigen::Index> (indices_->size ()));
