@@ -20,7 +20,9 @@ namespace pcl_crf {
  *  points by their rigid motion and estimates every cluster's motion; the final
  *  transformation is the static world's motion (it maps source points into the
  *  target frame, the inverse of the sensor's own motion), and hasConverged() is true
- *  when a static cluster was found. Points with non-finite x or y are skipped (all
+ *  when a static cluster associated with at least three target points was found (fewer
+ *  do not determine the sensor's motion: a target that does not overlap the source, or
+ *  a scan far from the guess, gave back the guess unchanged as the estimate). Points with non-finite x or y are skipped (all
  *  indices refer to the input clouds). The guess given to align() is the odometry
  *  (T_target_source) unless setOdometry() was called.
  *
@@ -159,6 +161,9 @@ private:
   void
   storeResults (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<int>& source_index,
                 const std::vector<int>& target_index);
+  /** Distinct target points the static cluster's points are associated with in the last result. */
+  int
+  staticMatches () const;
 
   joint::JointModel model_;
   joint::JointParameters parameters_;

@@ -1023,7 +1023,19 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   nan_guess (1, 3) = std::numeric_limits<float>::quiet_NaN ();
   estimator.align (aligned, nan_guess);  // a NaN guess, reported
   EXPECT_FALSE (estimator.hasConverged ());
+  // A target that nothing of the source overlaps: no point is associated, and the guess
+  // came back as the "estimate" with hasConverged () true.
+  Eigen::Matrix2Xd far = pair.target;
+  far.row (0).array () += 500.0;
+  estimator.setInputTarget (toCloud (far));
+  Eigen::Matrix4f shifted = Eigen::Matrix4f::Identity ();
+  shifted (0, 3) = 1000.0f;
+  estimator.align (aligned, shifted);
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setInputTarget (toCloud (pair.target.leftCols (1)));  // one target point
   estimator.align (aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  alignWithPairOdometry (estimator, pair, aligned);
   EXPECT_TRUE (estimator.hasConverged ());
 }
 
@@ -1089,9 +1101,8 @@ TEST (JointCRFEstimator, ReportsSourceIndicesOutsideTheCloudWithoutCrashing)
   pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
   estimator.setModel (shippedModel ());
   estimator.setInputSource (source);
-  estimator.setInputTarget (toCloud (pair.target));
   pcl::PointCloud<pcl::PointXYZ> aligned;
-  estimator.align (aligned);
+  alignWithPairOdometry (estimator, pair, aligned);
   ASSERT_TRUE (estimator.hasConverged ());
   for (const int bad : {static_cast<int> (source->size ()), 1000000000, -1}) {
     pcl::IndicesPtr indices (new pcl::Indices{0, 1, 2, bad, 4});

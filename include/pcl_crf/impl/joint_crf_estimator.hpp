@@ -7,6 +7,7 @@
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <exception>
 
 namespace pcl_crf {
@@ -137,7 +138,26 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
     storeResults (source, target, source_index, target_index);
   final_transformation_ = transformation_ = toMatrix4<Scalar> (result_.T_source_target.inverse ());
   moveSource (final_transformation_, output);
-  converged_ = result_.static_cluster >= 0;
+  // Fewer than three target points associated with the static world do not over-determine
+  // its motion: with none, the guess comes back unchanged, not estimated.
+  constexpr int kLeastStaticMatches = 3;
+  const int static_matches = staticMatches ();
+  converged_ = result_.static_cluster >= 0 && static_matches >= kLeastStaticMatches;
+  if (result_.static_cluster >= 0 && !converged_)
+    PCL_WARN ("[pcl_crf::%s::computeTransformation] the static world is associated with %d target points: its "
+              "motion is not estimated (hasConverged () is false)\n",
+              reg_name_.c_str (), static_matches);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> int
+JointCRFEstimator<PointSource, PointTarget, Scalar>::staticMatches () const
+{
+  std::vector<int> targets;
+  for (std::size_t i = 0; i < result_.source_cluster.size (); ++i)
+    if (result_.source_cluster[i] == result_.static_cluster && result_.source_match[i] != kNoMatch)
+      targets.push_back (result_.source_match[i]);
+  std::sort (targets.begin (), targets.end ());
+  return static_cast<int> (std::unique (targets.begin (), targets.end ()) - targets.begin ());
 }
 
 }  // namespace pcl_crf
