@@ -77,6 +77,17 @@ columnSoftmax (Eigen::MatrixXd& log_p)
   }
 }
 
+/** The most pairs of an initial cluster: max_segment_points, raised so that the scan
+ *  makes at most max_initial_clusters of them (about: breaks at distance make more). */
+int
+segmentCap (const PointPairs& pairs, const CrfClusteringParameters& parameters)
+{
+  const auto n = static_cast<long> (pairs.size ());
+  const long spread = (n + parameters.max_initial_clusters - 1) / parameters.max_initial_clusters;
+  return parameters.max_segment_points > 0 ? static_cast<int> (std::max<long> (parameters.max_segment_points, spread))
+                                           : parameters.max_segment_points;
+}
+
 /** What the rounds of clusterPointPairs () reuse (kept per thread between calls). */
 struct Workspace
 {
@@ -168,6 +179,8 @@ validateParameters (const CrfClusteringParameters& p)
 {
   if (!(p.segment_break_distance > 0.0))
     fail ("segment_break_distance must be > 0 [m]");
+  if (p.max_initial_clusters < 1)
+    fail ("max_initial_clusters must be >= 1");
   if (p.max_iterations < 1)
     fail ("max_iterations must be >= 1");
   if (!(p.max_average_neff > 1.0))
@@ -199,7 +212,7 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
     return result;
 
   // Sec. IV-D: over-segment the scan, one cluster per segment.
-  result.labels = segmentByDistance (pairs.source, parameters.segment_break_distance, parameters.max_segment_points);
+  result.labels = segmentByDistance (pairs.source, parameters.segment_break_distance, segmentCap (pairs, parameters));
   int cluster_count = result.labels.back () + 1;
   result.initial_clusters = cluster_count;
 

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <limits>
 #include <random>
 #include <string>
@@ -402,6 +403,30 @@ TEST (ClusteringLearning, ChainsWithoutAnEdgeCannotTeachThePairwiseWeights)
   const std::vector<crf::LabelledChain> chains{makeTrainingChain (one, {0})};
   EXPECT_THROW (learnWeights (chains), std::invalid_argument);
   EXPECT_FALSE (crf::hasAnEdge (chains));
+}
+
+TEST (CrfClustering, ALongScanStartsFromABoundedNumberOfClusters)
+{
+  // 10 000 pairs on a 10 m circle, one static world: 20-pair segments made 500 initial
+  // clusters, and every round costs clusters × pairs (100 000 pairs took minutes; with
+  // the bound 2.3 s).
+  const int n = 10000;
+  Eigen::Matrix2Xd source (2, n);
+  for (int i = 0; i < n; ++i)
+    source.col (i) << 10.0 * std::cos (2.0 * M_PI * i / n), 10.0 * std::sin (2.0 * M_PI * i / n);
+  std::vector<int> match (n);
+  std::iota (match.begin (), match.end (), 0);
+  const Rigid2d ego = makeRigid2d (0.1, 0.0, 0.01);
+  const Eigen::Matrix2Xd target = (ego.linear () * source).colwise () + ego.translation ();
+  const PointPairs pairs = makePointPairs (source, target, match);
+  CrfClusteringParameters parameters;
+  const CrfClusteringResult result = clusterPointPairs (pairs, typicalWeights (), parameters);
+  EXPECT_LE (result.initial_clusters, 256);  // ⌈10 000 / 256⌉ = 40 pairs each
+  EXPECT_GE (result.initial_clusters, 250);
+  ASSERT_EQ (result.motions.size (), 1u);
+  EXPECT_LT (motionError (result.motions[0], ego).first, 1e-6);
+  parameters.max_initial_clusters = 0;
+  EXPECT_THROW (clusterPointPairs (pairs, typicalWeights (), parameters), std::invalid_argument);
 }
 
 }  // namespace

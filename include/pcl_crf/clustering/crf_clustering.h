@@ -52,6 +52,11 @@ struct CrfClusteringParameters
   double segment_break_distance = 0.5;
   /** an initial cluster holds at most this many pairs (≤ 0: no cap) [pairs]; default 20. */
   int max_segment_points = 20;
+  /** at most this many initial clusters: on a scan of more than max_segment_points times
+   *  as many pairs, an initial cluster holds up to ⌈n / max_initial_clusters⌉ pairs
+   *  instead (every round costs clusters × pairs: 100 000 pairs in 5 000 clusters took
+   *  minutes); ≥ 1, default 256, which no scan of up to 5 120 pairs reaches. */
+  int max_initial_clusters = 256;
 
   // ---- iterations
   /** at most this many rounds of refit → features → belief propagation → merge;
