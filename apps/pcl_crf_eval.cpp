@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -106,10 +107,10 @@ parseArguments (int argc, char** argv, EvalArguments& args)
     return print_error ("No dataset folder given (see -h).\n"), false;
   if (args.methods.empty ())
     return print_error ("--method needs at least one method name.\n"), false;
-  for (std::size_t k = 1; k < args.methods.size (); ++k)
-    if (std::find (args.methods.begin (), args.methods.begin () + static_cast<std::ptrdiff_t> (k), args.methods[k]) !=
-        args.methods.begin () + static_cast<std::ptrdiff_t> (k))
-      return print_error ("--method names '%s' twice.\n", args.methods[k].c_str ()), false;
+  std::set<std::string> named;
+  for (const std::string& method : args.methods)
+    if (!named.insert (method).second)
+      return print_error ("--method names '%s' twice.\n", method.c_str ()), false;
   if (args.format != "table" && args.format != "csv" && args.format != "json")
     return print_error ("--format must be table, csv or json, not '%s'.\n", args.format.c_str ()), false;
   if (!(args.tolerance >= 0.0))

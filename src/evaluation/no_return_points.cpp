@@ -22,31 +22,18 @@ struct ExactPointHash
   }
 };
 
-/** Calls \a visit (i, keep) for every point of \a scan, keep telling whether it is a
- *  return (isReturn ()) at coordinates no earlier return of the scan has. */
-template <typename Visit> void
-visitReturns (const Eigen::Matrix2Xd& scan, double range_max, Visit visit)
-{
-  std::unordered_set<std::pair<double, double>, ExactPointHash> seen;
-  seen.reserve (static_cast<std::size_t> (scan.cols ()));
-  for (Eigen::Index i = 0; i < scan.cols (); ++i) {
-    const bool keep = isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second;
-    if (!visit (static_cast<int> (i), keep))
-      return;
-  }
-}
-
-/** The indices of the points of \a scan that are returns, each position once. */
+/** The indices of the points of \a scan that are returns (isReturn ()), each position
+ *  once: a return at the coordinates of an earlier one is left out. */
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {
   std::vector<int> kept;
   kept.reserve (static_cast<std::size_t> (scan.cols ()));
-  visitReturns (scan, range_max, [&kept] (int i, bool keep) {
-    if (keep)
-      kept.push_back (i);
-    return true;
-  });
+  std::unordered_set<std::pair<double, double>, ExactPointHash> seen;
+  seen.reserve (static_cast<std::size_t> (scan.cols ()));
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+    if (isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second)
+      kept.push_back (static_cast<int> (i));
   return kept;
 }
 
@@ -55,12 +42,7 @@ bool
 leavesOutAPoint (const ScanPair& pair)
 {
   const auto leavesOut = [&pair] (const Eigen::Matrix2Xd& scan) {
-    bool left_out = false;
-    visitReturns (scan, pair.sensor.range_max, [&left_out] (int, bool keep) {
-      left_out = !keep;
-      return keep;
-    });
-    return left_out;
+    return static_cast<Eigen::Index> (returnsOf (scan, pair.sensor.range_max).size ()) != scan.cols ();
   };
   return leavesOut (pair.source) || leavesOut (pair.target);
 }

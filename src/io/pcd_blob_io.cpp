@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace pcl_crf {
@@ -37,25 +38,36 @@ isReadable (const pcl::PCLPointField& field)
   return field.count == 1 && pcl::getFieldSize (field.datatype) != 0;
 }
 
-/** \brief The words after \a keyword on its line of the PCD header of \a path
- *  (empty when the header, which ends at DATA, has no such line). */
-std::vector<std::string>
-headerLine (const std::string& path, const std::string& keyword)
+/** \brief The lines of a PCD header: keyword -> the words after it. */
+using PcdHeaderLines = std::map<std::string, std::vector<std::string>>;
+
+/** \brief The lines of the PCD header of \a path, read once: every keyword's first line
+ *  before DATA (or before a blank line). */
+PcdHeaderLines
+headerLines (const std::string& path)
 {
+  PcdHeaderLines lines;
   std::ifstream in (path);
   std::string line, word;
   while (std::getline (in, line)) {
     std::istringstream words (line);
     if (!(words >> word) || word == "DATA")
       break;
-    if (word != keyword)
-      continue;
+    const std::string keyword = word;
     std::vector<std::string> rest;
     while (words >> word)
       rest.push_back (word);
-    return rest;
+    lines.emplace (keyword, std::move (rest));
   }
-  return {};
+  return lines;
+}
+
+/** \brief The words after \a keyword in \a lines (empty when the header has no such line). */
+std::vector<std::string>
+wordsAfter (const PcdHeaderLines& lines, const std::string& keyword)
+{
+  const auto found = lines.find (keyword);
+  return found == lines.end () ? std::vector<std::string> () : found->second;
 }
 
 /** \brief Why \a name is not among the fields PCL read: PCL drops a field declared
@@ -63,8 +75,9 @@ headerLine (const std::string& path, const std::string& keyword)
 std::string
 missingFieldMessage (const std::string& path, const std::string& name)
 {
-  const std::vector<std::string> names = headerLine (path, "FIELDS");
-  const std::vector<std::string> counts = headerLine (path, "COUNT");
+  const PcdHeaderLines lines = headerLines (path);
+  const std::vector<std::string> names = wordsAfter (lines, "FIELDS");
+  const std::vector<std::string> counts = wordsAfter (lines, "COUNT");
   for (std::size_t i = 0; i < names.size () && i < counts.size (); ++i)
     if (names[i] == name)
       return path + ": field '" + name + "' has COUNT " + counts[i] + ", must be 1";
@@ -179,6 +192,10 @@ convertFields (const pcl::PCLPointCloud2& blob, const std::vector<PcdField>& fie
   return converted;
 }
 
+/** \brief The most bytes one byte of LZF data (binary_compressed) unpacks to: a
+ *  back-reference of 3 bytes unpacks to at most 264. */
+constexpr double kLzfMostUnpackedPerByte = 88.0;
+
 /** \brief The PCD header's DATA encodings, as PCDReader::readHeader () numbers them. */
 enum PcdEncoding : int
 {
@@ -208,8 +225,9 @@ asciiPointCount (const std::string& path, std::size_t data_index)
 double
 declaredPointCount (const std::string& path)
 {
-  const auto count = [&path] (const char* keyword) {
-    const std::vector<std::string> words = headerLine (path, keyword);
+  const PcdHeaderLines lines = headerLines (path);
+  const auto count = [&lines] (const char* keyword) {
+    const std::vector<std::string> words = wordsAfter (lines, keyword);
     char* end = nullptr;
     const double value = words.size () == 1 ? std::strtod (words[0].c_str (), &end) : 0.0;
     return end != nullptr && *end == '\0' && value > 0.0 ? value : 0.0;
@@ -219,15 +237,14 @@ declaredPointCount (const std::string& path)
 
 /** \brief Checks, before PCL's reader allocates the cloud the header declares, that a
  *  file of its size can hold that many points (each takes a byte at the least, a
- *  binary_compressed byte unpacks to at most 88 (see checkBodySize ())).
+ *  binary_compressed byte unpacks to at most kLzfMostUnpackedPerByte).
  *  \throws DatasetError naming the file and both counts */
 void
 checkDeclaredPointCount (const std::string& path)
 {
-  constexpr double kMostPointsPerByte = 88.0;
   const double file_size = static_cast<double> (std::filesystem::file_size (path));
   const double declared = declaredPointCount (path);
-  if (declared > kMostPointsPerByte * file_size) {
+  if (declared > kLzfMostUnpackedPerByte * file_size) {
     std::ostringstream what;
     what << path << ": the header declares " << std::setprecision (15) << declared << " points, more than a file of "
          << file_size << " bytes can hold";
@@ -280,9 +297,6 @@ checkBodySize (const std::string& path, const pcl::PCLPointCloud2& header, int e
   }
   if (encoding != kBinaryCompressed)
     throw DatasetError (path + ": unknown DATA encoding (ascii, binary or binary_compressed)");
-  // LZF, which binary_compressed uses, unpacks 3 bytes to at most 264: a body that claims
-  // more is corrupt, however the header agrees with it.
-  constexpr std::size_t kMostUnpackedPerByte = 88;
   const CompressedSizes sizes = body >= 8 ? compressedSizes (path, data_index) : CompressedSizes{};
   if (body < 8 || body - 8 < sizes.compressed)
     throw DatasetError (path + ": the binary_compressed data are truncated (" + std::to_string (body) +
@@ -290,7 +304,8 @@ checkBodySize (const std::string& path, const pcl::PCLPointCloud2& header, int e
   if (sizes.uncompressed != points * step)
     throw DatasetError (declared + " of " + std::to_string (step) + " bytes, the binary_compressed data unpack to " +
                         std::to_string (sizes.uncompressed) + " bytes");
-  if (sizes.uncompressed > kMostUnpackedPerByte * static_cast<std::size_t> (sizes.compressed))
+  // A body that claims to unpack to more than LZF can is corrupt, however the header agrees with it.
+  if (sizes.uncompressed > kLzfMostUnpackedPerByte * static_cast<double> (sizes.compressed))
     throw DatasetError (path + ": " + std::to_string (sizes.compressed) + " compressed bytes cannot unpack to the " +
                         std::to_string (sizes.uncompressed) + " bytes declared (corrupt binary_compressed data)");
 }
