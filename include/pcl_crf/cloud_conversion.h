@@ -1,10 +1,14 @@
 #pragma once
 
+#include <pcl_crf/core/planar_transform.h>
+
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 
 #include <Eigen/Core>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -80,6 +84,55 @@ firstRepeatedIndex (const std::vector<Index>& indices, std::size_t size)
     seen[i] = true;
   }
   return -1;
+}
+
+/** \brief Why \a indices cannot name the nodes of a source cloud of \a size points, or
+ *  "" when they can: an index outside the cloud (firstIndexOutside ()), or one given
+ *  twice (firstRepeatedIndex (): every point is one node of the chains). */
+template <typename Index> std::string
+indicesProblem (const std::vector<Index>& indices, std::size_t size)
+{
+  const long outside = firstIndexOutside (indices, size);
+  if (outside >= 0)
+    return "source index " + std::to_string (indices[outside]) + " (position " + std::to_string (outside) +
+           " of the indices) is not a point of the " + std::to_string (size) + "-point source cloud";
+  const long repeated = firstRepeatedIndex (indices, size);
+  if (repeated >= 0)
+    return "source index " + std::to_string (indices[repeated]) + " (position " + std::to_string (repeated) +
+           " of the indices) is given twice: every point is one node of the chain";
+  return "";
+}
+
+/** \brief Why the finite points of \a cloud do not fit PCL's single precision
+ *  (kMaxCoordinate, for |x|, |y| and |z|), naming the first point beyond it, or "" when all fit.
+ *  \param[in] name "source" or "target", for the message */
+template <typename PointT> std::string
+coordinateProblem (const pcl::PointCloud<PointT>& cloud, const std::string& name)
+{
+  for (std::size_t i = 0; i < cloud.size (); ++i) {
+    const Eigen::Vector3d xyz = cloud[i].getVector3fMap ().template cast<double> ();
+    const bool beyond = (xyz.array ().isFinite () && xyz.array ().abs () > kMaxCoordinate).any ();
+    if (beyond)
+      return name + " point " + std::to_string (i) +
+             " has a coordinate beyond 1e18 m: its squared distances do not fit PCL's single-precision points";
+  }
+  return "";
+}
+
+/** \brief toRigid2d (\a M), with a PCL_WARN naming what it drops when \a M is a finite
+ *  transform that is not planar (nonPlanarPart ()): a guess or odometry in 3D, or one
+ *  that scales. A non-finite \a M is left to the caller's own check.
+ *  \param[in] where "Class::method", for the message */
+template <typename Scalar> Rigid2d
+toRigid2dWarning (const Eigen::Matrix<Scalar, 4, 4>& M, const std::string& where)
+{
+  if (M.allFinite ()) {
+    const std::string lost = nonPlanarPart (M);
+    if (!lost.empty ())
+      PCL_WARN ("[pcl_crf::%s] the transform %s: only its rotation about z and its x/y translation are used\n",
+                where.c_str (), lost.c_str ());
+  }
+  return toRigid2d (M);
 }
 
 /** \brief Makes a PCL cloud (z = 0) from a 2 x N matrix. */

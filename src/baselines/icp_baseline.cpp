@@ -26,7 +26,6 @@ checkOptions (const ScanPair& pair, const IcpBaselineOptions& options)
   if (!problem.empty ())
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] " + problem);
   // PCL's points are single precision: a squared distance must stay finite in float.
-  constexpr double kMaxCoordinate = 1e18;  // [m]; (4 · 1e18)² < FLT_MAX ≈ 3.4e38
   const auto within = [] (const auto& values) { return values.cwiseAbs ().maxCoeff () <= kMaxCoordinate; };
   if (!within (pair.source) || !within (pair.target) || !within (pair.odometry.T_source_target.translation ()))
     throw std::invalid_argument ("[pcl_crf::runIcpBaseline] coordinates and odometry beyond 1e18 m do not fit "

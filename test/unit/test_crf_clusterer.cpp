@@ -188,6 +188,12 @@ TYPED_TEST (CRFClustererTest, BadInputGivesAnEmptyResult)
   (*this->scene.target)[9].x = std::numeric_limits<float>::infinity ();
   expectEmpty ("infinite target point");
   (*this->scene.target)[9].x = x9;
+  (*this->scene.target)[9].x = 1e37f;  // beyond 1e18 m: squared distances overflow PCL's floats
+  expectEmpty ("target point at 1e37 m");
+  (*this->scene.target)[9].x = x9;
+  (*bad)[5].distance = std::numeric_limits<float>::quiet_NaN ();  // once dropped unnamed
+  expectEmpty ("NaN correspondence distance");
+  (*bad)[5].distance = 0.0f;
 
   pcl::CorrespondencesPtr one (new pcl::Correspondences (1, (*this->scene.correspondences)[0]));
   this->clusterer.setCorrespondences (one);

@@ -237,6 +237,34 @@ TYPED_TEST (CrfMatcherTest, BadInputGivesAnEmptyResult)
     matcher.determineCorrespondences (correspondences);  // once a crash in the features
     EXPECT_TRUE (correspondences.empty ());
   }
+  {  // a guess that is not planar is warned about, and its planar part used
+    Matcher matcher;
+    Eigen::Matrix4f tilted = Eigen::Matrix4f::Identity ();
+    tilted.topLeftCorner<3, 3> () = Eigen::AngleAxisf (0.3f, Eigen::Vector3f::UnitX ()).toRotationMatrix ();
+    tilted (0, 3) = 1.5f;
+    pcl::console::setVerbosityLevel (pcl::console::L_WARN);
+    testing::internal::CaptureStderr ();
+    matcher.setInitialGuess (tilted);
+    const std::string warning = testing::internal::GetCapturedStderr ();
+    EXPECT_NE (warning.find ("setInitialGuess] the transform rotates about the x or y axis"), std::string::npos)
+        << warning;
+    EXPECT_TRUE (matcher.getInitialGuess ().isApprox (pcl_crf::toMatrix4<float> (makeRigid2d (1.5, 0.0, 0.0))));
+    testing::internal::CaptureStderr ();
+    matcher.setInitialGuess (pcl_crf::toMatrix4<float> (makeRigid2d (1.0, 2.0, 0.4)));  // planar: nothing to say
+    EXPECT_EQ (testing::internal::GetCapturedStderr (), "");
+    pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);
+  }
+  {  // coordinates beyond 1e18 m: squared distances overflow PCL's floats
+    Matcher matcher;
+    matcher.setModel (defaultModel ());
+    auto far = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->target_);
+    (*far)[3].y = 1e37f;
+    matcher.setInputSource (this->source_);
+    matcher.setInputTarget (far);
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+  }
   {  // source indices outside the cloud (once a crash)
     Matcher matcher;
     matcher.setModel (defaultModel ());
@@ -248,6 +276,10 @@ TYPED_TEST (CrfMatcherTest, BadInputGivesAnEmptyResult)
     matcher.determineCorrespondences (correspondences);
     EXPECT_TRUE (correspondences.empty ());
     (*outside)[2] = -5;
+    correspondences.emplace_back (0, 0, 1.0f);
+    matcher.determineCorrespondences (correspondences);
+    EXPECT_TRUE (correspondences.empty ());
+    (*outside)[2] = 1;  // every source point is one node of the chain
     correspondences.emplace_back (0, 0, 1.0f);
     matcher.determineCorrespondences (correspondences);
     EXPECT_TRUE (correspondences.empty ());

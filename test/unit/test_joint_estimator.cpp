@@ -1035,6 +1035,25 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   estimator.setInputTarget (toCloud (pair.target.leftCols (1)));  // one target point
   estimator.align (aligned);
   EXPECT_FALSE (estimator.hasConverged ());
+  // Coordinates near 1e37 made PCL's kd-tree of the target abort (a FLANN assertion);
+  // beyond 1e18 m squared distances overflow PCL's floats.
+  estimator.setInputTarget (toCloud (pair.target * 1e37));
+  estimator.align (aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setInputTarget (toCloud (pair.target));
+  estimator.setInputSource (toCloud (pair.source * 1e20));
+  estimator.align (aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  EXPECT_TRUE (estimator.getCorrespondences ().empty ());
+  // Every source point is one node: an index given twice was estimated twice.
+  estimator.setInputSource (toCloud (pair.source));
+  pcl::IndicesPtr twice (new pcl::Indices);
+  for (int i = 0; i < static_cast<int> (pair.source.cols ()); ++i)
+    twice->insert (twice->end (), {i, i});
+  estimator.setIndices (twice);
+  estimator.align (aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  estimator.setIndices (pcl::IndicesPtr ());
   alignWithPairOdometry (estimator, pair, aligned);
   EXPECT_TRUE (estimator.hasConverged ());
 }

@@ -17,6 +17,11 @@ using Rigid2d = Eigen::Isometry2d;
 /** \brief Index value meaning "no corresponding target point" (outlier). */
 constexpr int kNoMatch = -1;
 
+/** \brief The largest coordinate [m] a scan point, odometry or object motion may have:
+ *  squared distances between such points, (4 · 1e18)² < FLT_MAX ≈ 3.4e38, stay finite
+ *  in PCL's single precision (PCL's kd-tree aborts on coordinates near 1e37). */
+constexpr double kMaxCoordinate = 1e18;
+
 /** \brief Metadata of the laser that produced a scan. Angles in radians,
  *  ranges in metres. Beam i points at angle_min + i * angle_increment.
  */

@@ -17,7 +17,7 @@
 template <typename PointT> void
 pcl_crf::CRFClusterer<PointT>::setOdometry (const Eigen::Matrix4f& T_source_target, const Eigen::Matrix3d& covariance)
 {
-  odometry_.T_source_target = toRigid2d (T_source_target);
+  odometry_.T_source_target = toRigid2dWarning (T_source_target, std::string (getClassName ()) + "::setOdometry");
   odometry_.covariance = covariance;
   has_odometry_ = true;
 }
@@ -27,8 +27,9 @@ pcl_crf::CRFClusterer<PointT>::setWeights (const Eigen::VectorXd& weights)
 {
   if (weights.size () != clustering::kWeightCount || !weights.allFinite ())
   {
-    PCL_ERROR ("[pcl_crf::%s::setWeights] expected %d finite weights, got %d; weights unchanged\n",
-               getClassName ().c_str (), clustering::kWeightCount, static_cast<int> (weights.size ()));
+    PCL_ERROR ("[pcl_crf::%s::setWeights] expected %d finite weights, got %d%s; weights unchanged\n",
+               getClassName ().c_str (), clustering::kWeightCount, static_cast<int> (weights.size ()),
+               weights.allFinite () ? "" : " holding NaN or infinite values");
     return;
   }
   weights_ = weights;
@@ -76,20 +77,14 @@ pcl_crf::CRFClusterer<PointT>::prepare (Eigen::Matrix2Xd& source, Eigen::Matrix2
     PCL_ERROR ("[pcl_crf::%s::extract] no weights: call setWeights () or loadModel ()\n", getClassName ().c_str ());
     return false;
   }
-  const long outside = firstIndexOutside (*indices_, input_->size ());
-  if (outside >= 0)
+  std::string problem = indicesProblem (*indices_, input_->size ());
+  if (problem.empty ())
+    problem = coordinateProblem (*input_, "source");
+  if (problem.empty ())
+    problem = coordinateProblem (*target_, "target");
+  if (!problem.empty ())
   {
-    PCL_ERROR ("[pcl_crf::%s::extract] source index %d (position %ld of the indices) is not a point of the "
-               "%zu-point source cloud\n",
-               getClassName ().c_str (), static_cast<int> ((*indices_)[outside]), outside, input_->size ());
-    return false;
-  }
-  const long repeated = firstRepeatedIndex (*indices_, input_->size ());
-  if (repeated >= 0)
-  {
-    PCL_ERROR ("[pcl_crf::%s::extract] source index %d (position %ld of the indices) is given twice: every "
-               "point is one node of the chain\n",
-               getClassName ().c_str (), static_cast<int> ((*indices_)[repeated]), repeated);
+    PCL_ERROR ("[pcl_crf::%s::extract] %s\n", getClassName ().c_str (), problem.c_str ());
     return false;
   }
   // Source: the finite points of indices_, in cloud (beam) order; target: every point.
@@ -131,6 +126,11 @@ pcl_crf::CRFClusterer<PointT>::readCorrespondences (const std::vector<int>& colu
     {
       PCL_ERROR ("[pcl_crf::%s::extract] correspondence %d -> %d joins a NaN or infinite point\n", name.c_str (),
                  query, match);
+      return false;
+    }
+    if (std::isnan (c.distance))  // it ranks the correspondences of a point
+    {
+      PCL_ERROR ("[pcl_crf::%s::extract] correspondence %d -> %d has a NaN distance\n", name.c_str (), query, match);
       return false;
     }
     const int k = column[query];  // −1: outside indices_, ignored

@@ -54,7 +54,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::setInitialGuess (const Matrix4& T_
 {
   const double interval = guess_.interval;
   guess_ = matching::MotionGuess ();
-  guess_.T_target_source = toRigid2d (T_target_source);
+  guess_.T_target_source = toRigid2dWarning (T_target_source, std::string (getClassName ()) + "::setInitialGuess");
   guess_.interval = interval;
 }
 
@@ -114,11 +114,13 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   }
   if (!pcl::PCLBase<PointSource>::initCompute ())
     return false;
-  const long outside = firstIndexOutside (*indices_, input_->size ());
-  if (outside >= 0) {
-    PCL_ERROR ("[pcl_crf::%s::%s] Source index %d (position %ld of the indices) is not a point of the %zu-point "
-               "source cloud.\n",
-               getClassName ().c_str (), method, static_cast<int> ((*indices_)[outside]), outside, input_->size ());
+  std::string problem = indicesProblem (*indices_, input_->size ());
+  if (problem.empty ())
+    problem = coordinateProblem (*input_, "source");
+  if (problem.empty ())
+    problem = coordinateProblem (*target_, "target");
+  if (!problem.empty ()) {
+    PCL_ERROR ("[pcl_crf::%s::%s] %s.\n", getClassName ().c_str (), method, problem.c_str ());
     return false;
   }
   // The valid source points in beam order (the indices, or the whole cloud).

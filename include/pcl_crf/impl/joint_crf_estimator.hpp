@@ -35,7 +35,7 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::setOdometry (const Matrix4& T_source_target,
                                                                  const Eigen::Matrix3d& covariance)
 {
-  odometry_.T_source_target = toRigid2d (T_source_target);
+  odometry_.T_source_target = toRigid2dWarning (T_source_target, reg_name_ + "::setOdometry");
   odometry_.covariance = covariance;
   has_odometry_ = true;
 }
@@ -96,17 +96,18 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::align (PointCloudSource& output, const Matrix4& guess)
 {
   // Indices given with setIndices () (not PCL's own "every point") are checked here:
-  // Base::align copies the points they name before computeTransformation runs.
-  if (input_ && indices_ && !fake_indices_) {
-    const long outside = firstIndexOutside (*indices_, input_->size ());
-    if (outside >= 0) {
-      PCL_ERROR ("[pcl_crf::%s::align] Source index %d (position %ld of the indices) is not a point of the %zu-point "
-                 "source cloud.\n",
-                 reg_name_.c_str (), static_cast<int> ((*indices_)[outside]), outside, input_->size ());
-      clearResults ();
-      converged_ = false;
-      return;
-    }
+  // Base::align copies the points they name before computeTransformation runs, and
+  // builds PCL's kd-tree of the target, which aborts on coordinates near 1e37.
+  std::string problem = input_ && indices_ && !fake_indices_ ? indicesProblem (*indices_, input_->size ()) : "";
+  if (problem.empty () && input_)
+    problem = coordinateProblem (*input_, "source");
+  if (problem.empty () && target_)
+    problem = coordinateProblem (*target_, "target");
+  if (!problem.empty ()) {
+    PCL_ERROR ("[pcl_crf::%s::align] %s.\n", reg_name_.c_str (), problem.c_str ());
+    clearResults ();
+    converged_ = false;
+    return;
   }
   Base::align (output, guess);
 }
@@ -122,7 +123,7 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   const Eigen::Matrix2Xd target = toMatrix2X (*target_, &target_index);
   Odometry odometry = odometry_;
   if (!has_odometry_) {
-    odometry.T_source_target = toRigid2d (guess).inverse ();
+    odometry.T_source_target = toRigid2dWarning (guess, reg_name_ + "::align").inverse ();
     odometry.covariance = guess_covariance_;
   }
   try {
