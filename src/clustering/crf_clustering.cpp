@@ -195,6 +195,18 @@ validateParameters (const CrfClusteringParameters& p)
     fail ("features.min_spacing must be > 0 [m]");
   if (p.features.weighted_neighbour_max_gap < -1)
     fail ("features.weighted_neighbour_max_gap must be >= 0 beams, or -1 for no bound");
+  if (p.merge_evidence != MergeEvidence::Local && p.merge_evidence != MergeEvidence::Marginals)
+    fail ("merge_evidence must be MergeEvidence::Local or MergeEvidence::Marginals, got " +
+          std::to_string (static_cast<int> (p.merge_evidence)));
+  if (!isMotionFit (p.motion_fit))
+    fail ("motion_fit must be MotionFit::Marginals or MotionFit::OwnPoints, got " +
+          std::to_string (static_cast<int> (p.motion_fit)));
+}
+
+bool
+isMotionFit (MotionFit fit)
+{
+  return fit == MotionFit::Marginals || fit == MotionFit::OwnPoints;
 }
 
 CrfClusteringResult
@@ -203,7 +215,8 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
 {
   validateParameters (parameters);
   if (weights.size () != kWeightCount || !weights.allFinite ())
-    fail ("expected " + std::to_string (kWeightCount) + " finite weights, got " + std::to_string (weights.size ()));
+    fail ("expected " + std::to_string (kWeightCount) + " finite weights, got " + std::to_string (weights.size ()) +
+          (weights.allFinite () ? "" : " holding NaN or infinite values"));
   const std::string problem = pointPairsProblem (pairs);
   if (!problem.empty ())
     fail (problem);

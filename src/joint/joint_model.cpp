@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace joint {
@@ -96,6 +97,9 @@ validateParameters (const JointParameters& p)
     bad ("slight_motion.min_mean_deviance must be >= 0");
   if (!(p.slight_motion.along_beam_steps >= 0.0) || !std::isfinite (p.slight_motion.along_beam_steps))
     bad ("slight_motion.along_beam_steps must be >= 0 beam steps");
+  if (!clustering::isMotionFit (p.final_motion_fit))
+    bad ("final_motion_fit must be MotionFit::Marginals or MotionFit::OwnPoints, got " +
+         std::to_string (static_cast<int> (p.final_motion_fit)));
   matching::describesBeams (p.sensor);  // throws for a sensor that describes no beams sensibly
   validateLadderOptions (p.inference);
   clustering::validateParameters (p.initial_clustering);

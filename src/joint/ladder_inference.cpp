@@ -467,7 +467,8 @@ validate (const LadderGeometry& geometry, const crf::ChainPotentials& associatio
 {
   const int n = geometry.size ();
   if (weights.size () != kJointWeightCount || !weights.allFinite ())
-    fail ("expected " + std::to_string (kJointWeightCount) + " finite weights, got " + std::to_string (weights.size ()));
+    fail ("expected " + std::to_string (kJointWeightCount) + " finite weights, got " + std::to_string (weights.size ()) +
+          (weights.allFinite () ? "" : " holding NaN or infinite values"));
   if (motions.empty ())
     fail ("at least one cluster motion is needed");
   if (static_cast<int> (motions.size ()) + 1 > kMaxStates)
@@ -497,6 +498,12 @@ validateLadderOptions (const LadderOptions& options)
   if (options.max_iterations < 1 || !(options.damping >= 0.0 && options.damping < 1.0) ||
       options.min_fit_points < 2 || !(options.tolerance >= 0.0))
     fail ("invalid options: max_iterations >= 1, damping in [0, 1), min_fit_points >= 2, tolerance >= 0");
+  if (options.schedule != MessageSchedule::Flooding && options.schedule != MessageSchedule::Sweep)
+    fail ("invalid options: schedule must be MessageSchedule::Flooding or MessageSchedule::Sweep, got " +
+          std::to_string (static_cast<int> (options.schedule)));
+  if (options.evidence != ClusterEvidence::MapAssociation && options.evidence != ClusterEvidence::BestAssociation)
+    fail ("invalid options: evidence must be ClusterEvidence::MapAssociation or ClusterEvidence::BestAssociation, "
+          "got " + std::to_string (static_cast<int> (options.evidence)));
 }
 
 LadderResult

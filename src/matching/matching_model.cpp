@@ -59,7 +59,10 @@ validateParameters (const MatchingParameters& p)
   require (p.passes == 1 || p.passes == 2, "passes must be 1 or 2");
   require (p.training_beam_spacing >= 0.0 && p.training_beam_spacing <= M_PI,
            "training_beam_spacing must be an angle in [0, pi] rad (0: never thin)");
-  require (p.fit.iterations >= 1, "fit iterations must be >= 1");
+  require (p.fit.iterations >= 1 && p.fit.iterations <= 1000, "fit iterations must be in [1, 1000]");
+  require (p.fit.metric == FitMetric::PointToPoint || p.fit.metric == FitMetric::PointToLine,
+           "fit metric must be FitMetric::PointToPoint or FitMetric::PointToLine, got " +
+               std::to_string (static_cast<int> (p.fit.metric)));
   require (p.fit.initial_scale > 0.0 && std::isfinite (p.fit.initial_scale) && p.fit.final_scale > 0.0 &&
                std::isfinite (p.fit.final_scale),
            "fit scales must be positive distances [m]");

@@ -107,6 +107,10 @@ struct CrfClusteringResult
 void
 validateParameters (const CrfClusteringParameters& parameters);
 
+/** \brief Whether \a fit is one of MotionFit's values (not an integer cast to it). */
+bool
+isMotionFit (MotionFit fit);
+
 /** \brief Clusters point pairs by their rigid motion with a chain CRF (Sec. IV).
  *
  *  Initialises one cluster per segment of the distance over-segmentation, then
