@@ -21,6 +21,8 @@ checkFiniteCloud (const Eigen::Matrix2Xd& cloud, const std::string& name, const 
   for (Eigen::Index i = 0; i < cloud.cols (); ++i)
     if (!cloud.col (i).allFinite ())
       fail (where, name + " point " + std::to_string (i) + " has a NaN or infinite coordinate");
+    else if (cloud.col (i).cwiseAbs ().maxCoeff () > kMaxCoordinate)
+      fail (where, name + " point " + std::to_string (i) + " has a coordinate beyond 1e18 m");
 }
 
 void
@@ -46,6 +48,8 @@ checkOdometry (const Odometry& odometry, const std::string& where)
   const std::string problem = odometryProblem (odometry);
   if (!problem.empty ())
     fail (where, problem);
+  if (odometry.T_source_target.translation ().cwiseAbs ().maxCoeff () > kMaxCoordinate)
+    fail (where, "odometry translation beyond 1e18 m");
   if ((odometry.covariance.diagonal ().array () <= 0.0).any ())
     fail (where, "odometry covariance must have positive variances on its diagonal");
 }
@@ -62,6 +66,8 @@ checkObjects (const std::vector<ObjectTruth>& objects, const std::string& where)
       fail (where, "object id " + std::to_string (object.id) + " appears twice");
     if (!object.T_target_source.matrix ().allFinite ())
       fail (where, "object " + std::to_string (object.id) + " has a NaN or infinite motion");
+    if (object.T_target_source.translation ().cwiseAbs ().maxCoeff () > kMaxCoordinate)
+      fail (where, "object " + std::to_string (object.id) + " moves beyond 1e18 m");
     static_count += object.is_static ? 1 : 0;
   }
   if (static_count != 1)

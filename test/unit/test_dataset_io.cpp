@@ -331,6 +331,31 @@ TEST_F (DatasetIo, NanCoordinateIsAnError)
   EXPECT_THROW (pcl_crf::saveScanPair (pair, (dir_ / "bad").string ()), DatasetError);
 }
 
+TEST_F (DatasetIo, CoordinatesAndMotionsBeyond1e18MetresAreErrors)
+{
+  // Finite, but their squares overflow PCL's floats: the evaluation printed inf errors.
+  const auto message = [] (const ScanPair& pair) -> std::string {
+    try {
+      pcl_crf::validateScanPair (pair, "x");
+    }
+    catch (const DatasetError& error) {
+      return error.what ();
+    }
+    return "";
+  };
+  EXPECT_EQ (message (makeSmallPair ()), "");
+  ScanPair pair = makeSmallPair ();
+  pair.objects[0].T_target_source.translation ().x () = 1e300;
+  EXPECT_NE (message (pair).find ("object " + std::to_string (pair.objects[0].id) + " moves beyond 1e18 m"),
+             std::string::npos);
+  pair = makeSmallPair ();
+  pair.target (1, 2) = -2e18;
+  EXPECT_NE (message (pair).find ("target point 2 has a coordinate beyond 1e18 m"), std::string::npos);
+  pair = makeSmallPair ();
+  pair.odometry.T_source_target.translation ().y () = 1e19;
+  EXPECT_NE (message (pair).find ("odometry translation beyond 1e18 m"), std::string::npos);
+}
+
 TEST_F (DatasetIo, InconsistentSizesAreErrors)
 {
   ScanPair pair = makeSmallPair ();
