@@ -82,14 +82,16 @@ printHelp (const char* program)
   line ("--speed M/S", "ego speed in m/s, >= 0 (default " + fmt (d.ego_speed) + ")");
   line ("--yaw-rate RAD/S", "ego yaw rate in rad/s (default " + fmt (d.ego_yaw_rate) + ")");
   line ("--moving N", "moving objects per pair, N >= 0; -1 = random 1..4 (default -1)");
-  line ("--object-speed M/S", "speed of every moving object in m/s; -1 = drawn per kind (default -1)");
+  line ("--object-speed M/S", "speed of every moving object in m/s, in [" + fmt (sim::kMinSimulatedObjectSpeed) + ", " +
+                                  fmt (sim::kMaxSimulatedObjectSpeed) + "]; -1 = drawn per kind (default -1)");
   line ("--scene TYPE", "mixed|outline|crossing|overtaking|opposite|pedestrians|static (default mixed)");
   line ("--spacing MODE", "travel (ego travels --travel metres) | consecutive (1/--scan-rate s) (default travel)");
   line ("--travel MIN,MAX", "ego travel between the scans in metres for travel spacing, 0 < MIN <= MAX <= " +
-                                fmt (sim::kMaxSimulatedTravel) + " (default " + fmt (d.travel_min) + "," +
+                                fmt (sim::kMaxSimulatedTravel) + ", MIN / --speed >= " +
+                                fmt (sim::kMinSimulatedScanInterval) + " s (default " + fmt (d.travel_min) + "," +
                                 fmt (d.travel_max) + ")");
-  line ("--scan-rate HZ", "scan rate in Hz for consecutive spacing, >= " + fmt (sim::kMinSimulatedScanRate) +
-                              ", with --speed / HZ <= " + fmt (sim::kMaxSimulatedTravel) + " m (default " +
+  line ("--scan-rate HZ", "scan rate in Hz for consecutive spacing, in [" + fmt (sim::kMinSimulatedScanRate) +
+                              ", " + fmt (1.0 / sim::kMinSimulatedScanInterval) + "], with --speed / HZ <= " + fmt (sim::kMaxSimulatedTravel) + " m (default " +
                               fmt (d.scan_rate) + ")");
   line ("--odom-noise SX,SY,ST", "odometry noise std: dx [m], dy [m], dtheta [rad] (default " +
                                      fmt (d.odometry_noise[0]) + "," + fmt (d.odometry_noise[1]) + "," +

@@ -145,12 +145,15 @@ validateSimulatorConfig (const SimulatorConfig& c)
     if (c.travel_min <= 0.0 || c.travel_max < c.travel_min || c.travel_max > kMaxSimulatedTravel)
       fail ("travel distances (--travel MIN,MAX) must satisfy 0 < MIN <= MAX <= " +
             number (kMaxSimulatedTravel) + " m, got " + number (c.travel_min) + "," + number (c.travel_max));
+    if (c.travel_min / c.ego_speed < kMinSimulatedScanInterval)
+      fail ("the shortest time between the scans, travel / speed (--travel MIN / --speed), must be at least " +
+            number (kMinSimulatedScanInterval) + " s, got " + number (c.travel_min / c.ego_speed) + " s");
   }
   else {
     requireFinite (c.scan_rate, "scan rate (--scan-rate)");
-    if (c.scan_rate < kMinSimulatedScanRate)
-      fail ("scan rate (--scan-rate) must be at least " + number (kMinSimulatedScanRate) + " Hz, got " +
-            number (c.scan_rate));
+    if (c.scan_rate < kMinSimulatedScanRate || 1.0 / c.scan_rate < kMinSimulatedScanInterval)
+      fail ("scan rate (--scan-rate) must be in [" + number (kMinSimulatedScanRate) + ", " +
+            number (1.0 / kMinSimulatedScanInterval) + "] Hz, got " + number (c.scan_rate));
     if (c.ego_speed / c.scan_rate > kMaxSimulatedTravel)
       fail ("the ego would travel " + number (c.ego_speed / c.scan_rate) + " m between the scans (--speed / "
             "--scan-rate), more than " + number (kMaxSimulatedTravel) + " m");
@@ -160,9 +163,11 @@ validateSimulatorConfig (const SimulatorConfig& c)
   if (c.scene == SceneType::Static && c.moving_count > 0)
     fail ("the static scene has no moving objects; drop --moving or choose another --scene");
   requireFinite (c.traffic.object_speed, "object speed (--object-speed)");
-  if (c.traffic.object_speed > kMaxSimulatedObjectSpeed)
-    fail ("object speed (--object-speed) must be at most " + number (kMaxSimulatedObjectSpeed) +
-          " m/s (negative: drawn per kind), got " + number (c.traffic.object_speed));
+  if (c.traffic.object_speed > kMaxSimulatedObjectSpeed ||
+      (c.traffic.object_speed >= 0.0 && c.traffic.object_speed < kMinSimulatedObjectSpeed))
+    fail ("object speed (--object-speed) must be in [" + number (kMinSimulatedObjectSpeed) + ", " +
+          number (kMaxSimulatedObjectSpeed) + "] m/s (an object standing still is part of the static world; "
+          "negative: drawn per kind), got " + number (c.traffic.object_speed));
   requireFinite (c.traffic.legged_pedestrian_fraction, "legged pedestrian fraction");
   if (c.traffic.legged_pedestrian_fraction < 0.0 || c.traffic.legged_pedestrian_fraction > 1.0)
     fail ("legged pedestrian fraction must be in [0, 1]");

@@ -644,6 +644,16 @@ TEST (SimulatorConfig, RejectsBadSettings)
   rejects ([] (sim::SimulatorConfig& c) { c.laser.range_noise = c.laser.range_max; });
   rejects ([] (sim::SimulatorConfig& c) { c.traffic.object_speed = 1e300; });
   rejects ([] (sim::SimulatorConfig& c) { c.name_prefix = "a/b"; });
+  // Objects labelled moving with the static world's motion: standing, or scans 1e-300 s apart.
+  rejects ([] (sim::SimulatorConfig& c) { c.traffic.object_speed = 0.0; });
+  rejects ([] (sim::SimulatorConfig& c) { c.traffic.object_speed = 1e-300; });
+  rejects ([] (sim::SimulatorConfig& c) { c.ego_speed = 1e300; });
+  rejects ([] (sim::SimulatorConfig& c) { c.travel_min = 1e-300, c.travel_max = 1e-300; });
+  rejects ([] (sim::SimulatorConfig& c) { c.spacing = sim::ScanSpacing::Consecutive, c.scan_rate = 1e300; });
+  sim::SimulatorConfig slow_and_fast;
+  slow_and_fast.traffic.object_speed = sim::kMinSimulatedObjectSpeed;
+  slow_and_fast.travel_min = slow_and_fast.travel_max = 1.01 * sim::kMinSimulatedScanInterval * slow_and_fast.ego_speed;
+  EXPECT_NO_THROW (sim::validateSimulatorConfig (slow_and_fast));
   // A standing sensor is fine with consecutive scans.
   sim::SimulatorConfig standing;
   standing.ego_speed = 0.0;

@@ -130,9 +130,13 @@ TEST (SimulatorTool, RejectsSizesThatWouldHangIt)
   const std::pair<const char*, const char*> cases[] = {
       {"--range 1e9", "maximum range (--range) must be in (0, 1000] m, got 1e+09"},
       {"--travel 1e9,1e9", "MIN <= MAX <= 100 m, got 1e+09,1e+09"},
-      {"--spacing consecutive --scan-rate 1e-300", "scan rate (--scan-rate) must be at least 0.1 Hz, got 1e-300"},
+      {"--spacing consecutive --scan-rate 1e-300", "scan rate (--scan-rate) must be in [0.1, 1000] Hz, got 1e-300"},
       {"--spacing consecutive --speed 1e9", "the ego would travel 1.33333e+07 m between the scans"},
-      {"--beams 20001", "--beams must be in 2..20000, got 20001"}};
+      {"--beams 20001", "--beams must be in 2..20000, got 20001"},
+      // Moving objects labelled with the static world's motion (scans 1e-300 s apart).
+      {"--speed 1e300", "the shortest time between the scans, travel / speed (--travel MIN / --speed), must be at "
+                        "least 0.001 s, got 2e-300 s"},
+      {"--object-speed 0", "object speed (--object-speed) must be in [0.01, 100] m/s"}};
   for (const auto& [bad, message] : cases) {
     std::string output;
     EXPECT_EQ (run ("timeout 60 " + base + bad, &output), 1) << bad;

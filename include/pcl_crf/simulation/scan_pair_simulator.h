@@ -39,6 +39,12 @@ constexpr double kMaxSimulatedRange = 1000.0;    ///< maximum range [m] (--range
 constexpr double kMaxSimulatedTravel = 100.0;    ///< ego travel between the scans [m] (--travel, --speed / --scan-rate)
 constexpr double kMinSimulatedScanRate = 0.1;    ///< scan rate [Hz] (--scan-rate)
 constexpr double kMaxSimulatedObjectSpeed = 100.0;  ///< speed of a moving object [m/s] (--object-speed)
+/** the slowest moving object [m/s] (--object-speed): with kMinSimulatedScanInterval, a
+ *  moving object's motion differs from the static world's (a standing one is part of it). */
+constexpr double kMinSimulatedObjectSpeed = 0.01;
+/** the shortest time between the scans [s]: travel / speed (--travel, --speed), or one
+ *  scan period (--scan-rate at most 1000 Hz). */
+constexpr double kMinSimulatedScanInterval = 1e-3;
 
 /** \brief Every setting of the scan-pair simulator, with defaults. */
 struct SimulatorConfig
@@ -55,11 +61,12 @@ struct SimulatorConfig
   // ---- time between the scans
   ScanSpacing spacing = ScanSpacing::Travel;
   /** range of the ego travel between the scans for Travel spacing [m],
-   *  0 < travel_min <= travel_max <= kMaxSimulatedTravel. */
+   *  0 < travel_min <= travel_max <= kMaxSimulatedTravel, travel_min / ego_speed >=
+   *  kMinSimulatedScanInterval. */
   double travel_min = 2.0;
   double travel_max = 4.0;
-  /** scan rate for Consecutive spacing [Hz], >= kMinSimulatedScanRate, and
-   *  ego_speed / scan_rate <= kMaxSimulatedTravel. */
+  /** scan rate for Consecutive spacing [Hz], >= kMinSimulatedScanRate, <= 1 /
+   *  kMinSimulatedScanInterval, and ego_speed / scan_rate <= kMaxSimulatedTravel. */
   double scan_rate = 75.0;
 
   // ---- scene
