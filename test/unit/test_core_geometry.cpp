@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -88,6 +91,49 @@ TEST (KnnIndex, BatchedSearchEqualsBruteForce)
     EXPECT_NEAR (result.squared_distances (0, q), d (best), 1e-12);
     EXPECT_LE (result.squared_distances (0, q), result.squared_distances (1, q));
   }
+}
+
+TEST (KnnIndex, CopiesOfAPointAreNeighboursInTheirOrder)
+{
+  // Points 1, 3 and 4 are one point; 0 and 2 are 1 m and 2 m from it. FLANN's tree
+  // cannot split copies (100 000 of them took minutes through CRFMatcher): it holds
+  // the distinct points and every search expands them into their copies, in order.
+  Eigen::MatrixXd points (2, 5);
+  points << 1, 0, 2, 0, 0,
+            0, 0, 0, -0.0, 0;
+  const pcl_crf::KnnIndex index (points);
+  EXPECT_EQ (index.size (), 5);
+  EXPECT_TRUE (index.points ().isApprox (points));
+  const auto result = index.search (Eigen::MatrixXd::Zero (2, 1), 6);
+  const std::vector<int> expected_indices = {1, 3, 4, 0, 2, -1};
+  const std::vector<double> expected_distances = {0, 0, 0, 1, 4, std::numeric_limits<double>::infinity ()};
+  for (int r = 0; r < 6; ++r) {
+    EXPECT_EQ (result.indices (r, 0), expected_indices[r]) << r;
+    EXPECT_EQ (result.squared_distances (r, 0), expected_distances[r]) << r;
+  }
+  const auto two = index.search (Eigen::Vector2d (0.9, 0.0), 2);  // point 0, then the first copy
+  EXPECT_EQ (two.indices (0, 0), 0);
+  EXPECT_EQ (two.indices (1, 0), 1);
+  EXPECT_NEAR (two.squared_distances (1, 0), 0.81, 1e-12);
+
+  // A scan with 20 000 copies of one of its points: the same neighbours as brute force.
+  Eigen::MatrixXd crowded (2, 20500);
+  crowded.leftCols (500) = randomPoints (500, 7);
+  crowded.rightCols (20000).colwise () = crowded.col (17);
+  const pcl_crf::KnnIndex crowded_index (crowded);
+  const Eigen::Matrix2Xd queries = randomPoints (50, 8);
+  const auto found = crowded_index.search (queries, 3);
+  for (Eigen::Index q = 0; q < queries.cols (); ++q) {
+    const Eigen::VectorXd d2 = (crowded.colwise () - queries.col (q)).colwise ().squaredNorm ();
+    std::vector<double> sorted (d2.data (), d2.data () + d2.size ());
+    std::partial_sort (sorted.begin (), sorted.begin () + 3, sorted.end ());
+    for (int r = 0; r < 3; ++r)
+      EXPECT_DOUBLE_EQ (found.squared_distances (r, q), sorted[r]) << q << " " << r;
+  }
+  const auto at_copy = crowded_index.search (crowded.col (17), 3);
+  EXPECT_EQ (at_copy.indices (0, 0), 17);
+  EXPECT_EQ (at_copy.indices (1, 0), 500);
+  EXPECT_EQ (at_copy.indices (2, 0), 501);
 }
 
 TEST (KnnIndex, FewerPointsThanKAndBadInput)
