@@ -1,4 +1,5 @@
 #include <pcl_crf/clustering/clustering_model.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <algorithm>
 #include <cmath>
@@ -147,9 +148,10 @@ saveModel (const CrfClusteringModel& model, const std::string& path)
 CrfClusteringModel
 loadModel (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw std::runtime_error ("[pcl_crf::clustering::loadModel] cannot read '" + path + "': " + problem);
   std::ifstream file (path);
-  if (!file)
-    throw std::runtime_error ("[pcl_crf::clustering::loadModel] cannot open '" + path + "'");
   return readModel (file, path);
 }
 

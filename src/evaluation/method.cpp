@@ -1,4 +1,5 @@
 #include <pcl_crf/evaluation/method.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <fstream>
 #include <sstream>
@@ -21,9 +22,10 @@ EvaluationMethod::saveModel (const std::string& path) const
 void
 EvaluationMethod::loadModel (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw std::runtime_error (name () + ": cannot read the model file '" + path + "': " + problem);
   std::ifstream file (path);
-  if (!file)
-    throw std::runtime_error (name () + ": cannot open the model file '" + path + "'");
   readModel (file, path);
 }
 

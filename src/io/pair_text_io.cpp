@@ -1,6 +1,7 @@
 #include "pair_text_io.h"
 
 #include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <cmath>
 #include <cstdio>
@@ -93,9 +94,10 @@ readObject (LineReader& reader, std::istringstream& in, ScanPair& pair)
 void
 readPairText (const std::string& path, ScanPair& pair)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw DatasetError (path + ": cannot read (" + problem + "; missing pair.txt?)");
   std::ifstream file (path);
-  if (!file)
-    throw DatasetError (path + ": cannot open (missing pair.txt?)");
   LineReader reader{path};
   std::set<std::string> seen;  // the keys given at most once (every key but object)
   const auto once = [&reader, &seen] (const std::string& key) {

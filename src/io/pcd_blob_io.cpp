@@ -1,6 +1,7 @@
 #include "pcd_blob_io.h"
 
 #include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
@@ -315,8 +316,9 @@ checkBodySize (const std::string& path, const pcl::PCLPointCloud2& header, int e
 pcl::PCLPointCloud2
 readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
 {
-  if (!std::filesystem::is_regular_file (path))
-    throw DatasetError (path + ": file not found");
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw DatasetError (path + ": " + (problem == "no such file" ? "file not found" : problem));
   checkDeclaredPointCount (path);  // PCL's readHeader () allocates the declared cloud
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;

@@ -1,4 +1,5 @@
 #include <pcl_crf/joint/joint_model.h>
+#include <pcl_crf/io/readable_file.h>
 #include <pcl_crf/matching/range_profile.h>
 
 #include <cmath>
@@ -171,9 +172,10 @@ saveJointModel (const JointModel& model, const std::string& path)
 JointModel
 loadJointModel (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw std::runtime_error ("[pcl_crf::joint::loadJointModel] cannot read '" + path + "': " + problem);
   std::ifstream file (path);
-  if (!file)
-    throw std::runtime_error ("[pcl_crf::joint::loadJointModel] cannot open '" + path + "'");
   return readJointModel (file, path);
 }
 

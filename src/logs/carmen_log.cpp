@@ -1,4 +1,5 @@
 #include <pcl_crf/logs/carmen_log.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <boost/iostreams/filter/gzip.hpp>
 #include <boost/iostreams/filtering_stream.hpp>
@@ -143,7 +144,31 @@ private:
     const double x = number (cursor, record, field);
     const double y = number (cursor, record, field);
     const double theta = number (cursor, record, field);
+    if (std::max (std::abs (x), std::abs (y)) > kMaxCoordinate)
+      fail (std::string (record) + " record: " + field + " lies beyond 1e18 m");
     return makeRigid2d (x, y, theta);
+  }
+
+  /** The end of a laser record after its timestamp: the host name and the logger's
+   *  timestamp (both absent in some converted logs), then nothing. A number where the
+   *  host should be, or a field after them, means the record holds more readings than
+   *  its count says: they were read as its pose and timestamp. */
+  void
+  recordEnd (LineCursor& cursor, const char* record, int count)
+  {
+    std::string host;
+    if (!cursor.nextWord (host))
+      return;
+    char* end = nullptr;
+    std::strtod (host.c_str (), &end);
+    const std::string more = std::string (record) + " record: more fields than its " + std::to_string (count) +
+                             " readings, pose, odometry and timestamp";
+    if (end != host.c_str () && *end == '\0')
+      fail (more + " (the host name is a number: does the record hold more readings than its count says?)");
+    number (cursor, record, "the logger timestamp");
+    std::string extra;
+    if (cursor.nextWord (extra))
+      fail (more + ", host name and logger timestamp: '" + extra + "'");
   }
 
   int
@@ -203,6 +228,7 @@ private:
     const Rigid2d laser_pose = pose (cursor, "FLASER", "the pose x y theta");
     const Rigid2d odometry_fields = pose (cursor, "FLASER", "the odometry x y theta");
     const double stamp = number (cursor, "FLASER", "the timestamp");
+    recordEnd (cursor, "FLASER", n);
     addScan (sensor, ranges, laser_pose, odometry_fields, stamp);
   }
 
@@ -239,6 +265,7 @@ private:
     for (int i = 0; i < 5; ++i)
       number (cursor, record, "a velocity or safety field");
     const double stamp = number (cursor, record, "the timestamp");
+    recordEnd (cursor, record, n);
     addScan (sensor, ranges, laser_pose, robot_pose, stamp);
   }
 
@@ -293,9 +320,10 @@ readCarmenLog (std::istream& in, const std::string& name, const CarmenReadOption
 LaserLog
 readCarmenLog (const std::string& path, const CarmenReadOptions& options)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw LogError (path + ": cannot read the CARMEN log: " + problem);
   std::ifstream file (path, std::ios::binary);
-  if (!file)
-    throw LogError (path + ": cannot open the CARMEN log (" + std::strerror (errno) + ")");
   if (!isGzipFile (path))
     return readCarmenLog (file, path, options);
   boost::iostreams::filtering_istream in;

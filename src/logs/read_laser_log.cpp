@@ -1,4 +1,5 @@
 #include <pcl_crf/logs/read_laser_log.h>
+#include <pcl_crf/io/readable_file.h>
 
 #include <cerrno>
 #include <cstring>
@@ -9,9 +10,10 @@ namespace pcl_crf {
 LaserLogFormat
 detectLaserLogFormat (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw LogError (path + ": cannot read the log: " + problem);
   std::ifstream file (path, std::ios::binary);
-  if (!file)
-    throw LogError (path + ": cannot open the log (" + std::strerror (errno) + ")");
   char magic[13] = {};
   file.read (magic, sizeof (magic));
   return std::string (magic, static_cast<std::size_t> (file.gcount ())) == "#ROSBAG V2.0\n" ? LaserLogFormat::Rosbag

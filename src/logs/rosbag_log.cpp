@@ -13,11 +13,14 @@
 #endif
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace pcl_crf {
 
@@ -68,9 +71,20 @@ requireTopic (const std::string& path, const std::vector<std::pair<std::string, 
   throw LogError (path + ": no topic " + topic + " in the bag; it has: " + describeTopics (topics));
 }
 
+/** \brief \a value as the shortest text that names it ("1e+30", "-100"). */
+std::string
+shortNumber (double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str ();
+}
+
 /** \brief What makes a LaserScan message unusable, or an empty string when nothing does:
- *  an angle that is not finite, beams without a step between them, or no finite
- *  positive maximum range (every beam would fall on one ray, or none be a return). */
+ *  an angle that is not finite, beams without a step between them (or one finer than
+ *  2π / kMaxBeamCount), beams spanning more than one turn, a negative minimum range, or
+ *  no finite positive maximum range within 1e18 m (every beam would fall on one ray,
+ *  none be a return, or points overflow single precision). */
 std::string
 laserScanProblem (const sensor_msgs::LaserScan& message)
 {
@@ -82,7 +96,52 @@ laserScanProblem (const sensor_msgs::LaserScan& message)
     return "angle_increment must be a finite angle other than 0";
   if (!std::isfinite (message.range_min) || !std::isfinite (message.range_max) || !(message.range_max > 0.0f))
     return "range_min and range_max must be finite and range_max positive";
+  if (message.range_min < 0.0f)
+    return "range_min " + shortNumber (message.range_min) + " is negative (a negative range would be mirrored "
+           "behind the sensor)";
+  if (message.range_max > kMaxCoordinate)
+    return "range_max lies beyond 1e18 m";
+  // No laser steps by less than 2π / kMaxBeamCount, nor turns more than one circle
+  // between its first and last beam (or starts its scan beyond two turns).
+  const double step = std::abs (static_cast<double> (message.angle_increment));
+  const double span = step * static_cast<double> (std::max<std::size_t> (message.ranges.size (), 1) - 1);
+  constexpr double kTurn = 2.0 * M_PI;
+  if (step < kTurn / kMaxBeamCount)
+    return "angle_increment " + shortNumber (message.angle_increment) + " rad is finer than 2π / " +
+           std::to_string (kMaxBeamCount) + " (every beam on nearly one ray)";
+  if (span > kTurn * (1.0 + 1e-6) || std::abs (message.angle_min) > 2.0 * kTurn)
+    return "the beams span " + shortNumber (span) + " rad from angle_min " + shortNumber (message.angle_min) +
+           " rad: more than one turn, or a start beyond two turns";
   return {};
+}
+
+/** \brief Whether the lengths a serialized LaserScan declares (its frame id, ranges and
+ *  intensities) fit its bytes. ROS's deserializer sizes each array from its declared
+ *  length before reading it: a corrupt length of 2^31 allocated 8 GB (for 40 s) before
+ *  the read failed. Layout: seq, stamp (2 x uint32), frame_id (uint32 length + bytes),
+ *  7 float32 (angles, times, ranges), then two float32 arrays (uint32 count + values). */
+bool
+laserScanLengthsFit (const rosbag::MessageInstance& message)
+{
+  std::vector<std::uint8_t> bytes (message.size ());
+  ros::serialization::OStream stream (bytes.data (), static_cast<std::uint32_t> (bytes.size ()));
+  message.write (stream);
+  std::size_t at = 12;  // seq, stamp
+  const auto length = [&] (std::size_t item) -> bool {  // reads a uint32 length, skips its items
+    if (at + 4 > bytes.size ())
+      return false;
+    std::uint32_t count = 0;
+    std::memcpy (&count, bytes.data () + at, 4);  // little-endian, as ROS writes it
+    at += 4;
+    if (count > (bytes.size () - at) / item)
+      return false;
+    at += count * item;
+    return true;
+  };
+  if (!length (1))
+    return false;
+  at += 7 * 4;
+  return length (4) && length (4);
 }
 
 /** \brief What makes a PoseStamped message unusable, or an empty string: a position or
@@ -94,6 +153,8 @@ poseProblem (const geometry_msgs::Pose& pose)
   const geometry_msgs::Quaternion& q = pose.orientation;
   if (!std::isfinite (p.x) || !std::isfinite (p.y) || !std::isfinite (p.z))
     return "the position is not finite";
+  if (std::max ({std::abs (p.x), std::abs (p.y), std::abs (p.z)}) > kMaxCoordinate)
+    return "the position lies beyond 1e18 m";
   const double norm = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
   if (!std::isfinite (norm) || !(norm > 0.0))
     return "the orientation is not a finite, non-zero quaternion";
@@ -206,6 +267,10 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
       if (message.getTopic () == options.scan_topic) {
         if (options.max_scans > 0 && log.scans.size () >= options.max_scans)
           continue;
+        if (message.getDataType () == ros::message_traits::datatype<sensor_msgs::LaserScan> () &&
+            !laserScanLengthsFit (message))
+          throw messageError (path, message, "its frame id, ranges or intensities declare more values than the "
+                                             "message holds (a corrupt bag)");
         const auto scan = message.instantiate<sensor_msgs::LaserScan> ();
         if (!scan || scan->ranges.empty ())
           continue;

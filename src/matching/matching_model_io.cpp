@@ -1,4 +1,5 @@
 #include <pcl_crf/matching/matching_chain.h>
+#include <pcl_crf/io/readable_file.h>
 #include <pcl_crf/matching/matching_model.h>
 #include <pcl_crf/matching/raw_features.h>
 
@@ -177,9 +178,10 @@ saveModel (const CrfMatchingModel& model, const std::string& path)
 CrfMatchingModel
 loadModel (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw std::runtime_error (path + ": cannot read the CRF-Matching model file: " + problem);
   std::ifstream file (path);
-  if (!file)
-    throw std::runtime_error (path + ": cannot open the CRF-Matching model file");
   return readModel (file, path);
 }
 

@@ -249,7 +249,18 @@ TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
     FAIL () << "no exception";
   }
   catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("missing.log: cannot open"), std::string::npos) << error.what ();
+    EXPECT_NE (std::string (error.what ()).find ("missing.log: cannot read the CARMEN log: no such file"),
+               std::string::npos)
+        << error.what ();
+  }
+  try {  // std::ifstream opens a directory; its reads then failed as "a corrupt gzip file?"
+    pcl_crf::readCarmenLog (dir_.string ());
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("cannot read the CARMEN log: is a directory, not a file"),
+               std::string::npos)
+        << error.what ();
   }
   const std::string broken = write ("broken.log", correctedLog (1) + "FLASER 4 1 2 x 4 0 0 0 0 0 0 1 h 1\n", false);
   try {
@@ -260,6 +271,41 @@ TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
     EXPECT_NE (std::string (error.what ()).find ("broken.log:6: FLASER record: a range reading"), std::string::npos)
         << error.what ();
   }
+  // More ranges than the count: they were read as the pose, odometry and timestamp.
+  const std::string longer = write ("longer.log", correctedLog (1) + "FLASER 2 1 2 3 0 0 0 0 0 0 1 h 1\n", false);
+  try {
+    pcl_crf::readCarmenLog (longer);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("longer.log:6: FLASER record: more fields than its 2 readings, pose, "
+                                                 "odometry and timestamp (the host name is a number"),
+               std::string::npos)
+        << error.what ();
+  }
+  const std::string trailing = write ("trailing.log", correctedLog (1) + "FLASER 2 1 2 0 0 0 0 0 0 1 h 1 7\n", false);
+  try {
+    pcl_crf::readCarmenLog (trailing);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("host name and logger timestamp: '7'"), std::string::npos)
+        << error.what ();
+  }
+  const std::string far = write ("far.log", correctedLog (1) + "FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1\n", false);
+  try {
+    pcl_crf::readCarmenLog (far);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("FLASER record: the pose x y theta lies beyond 1e18 m"),
+               std::string::npos)
+        << error.what ();
+  }
+  // Without the host name and logger timestamp (some converted logs): read as before.
+  EXPECT_EQ (pcl_crf::readCarmenLog (write ("short.log", correctedLog (1) + "FLASER 2 1 2 0 0 0 0 0 0 1\n", false))
+                 .scans.size (),
+             2u);
   const std::string truncated = write ("cut.log", "FLASER 3 1 2 3 0 0\n", false);
   EXPECT_THROW (pcl_crf::readCarmenLog (truncated), pcl_crf::LogError);
   const std::string empty = write ("empty.log", "PARAM a b\nODOM 0 0 0 0 0 0 1 h 1\n", false);

@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -200,6 +203,52 @@ TEST_F (LogRosbag, ScansAndPosesThatAreNotFiniteAreErrors)
   bad.scans[3].pose = makeRigid2d (std::nan (""), 0.0, 0.0);
   expectReadError (bad, "topic /ego_pose, message at 1000.3");
   expectReadError (bad, "the position is not finite");
+  // Finite nonsense: points beyond 1e18 m, every beam on one ray, a start turns away.
+  bad = log;
+  bad.scans[2].sensor.range_max = 3e38;
+  expectReadError (bad, "range_max lies beyond 1e18 m");
+  bad = log;
+  bad.scans[1].sensor.angle_increment = 1e-30;
+  expectReadError (bad, "angle_increment 1e-30 rad is finer than 2π / 100000");
+  bad = log;
+  bad.scans[1].sensor.angle_min = 1e30;
+  expectReadError (bad, "from angle_min 1e+30 rad: more than one turn, or a start beyond two turns");
+  bad = log;
+  bad.scans[3].pose = makeRigid2d (1e300, 0.0, 0.0);
+  expectReadError (bad, "the position lies beyond 1e18 m");
+}
+
+TEST_F (LogRosbag, AScanWhoseRangesCountExceedsItsBytesIsAnError)
+{
+  // ROS's deserializer sized the ranges from a corrupt count of 2^31 - 1 first: 8 GB and
+  // 40 s before "Buffer Overrun".
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  const std::string path = (dir_ / "count.bag").string ();
+  pcl_crf::LaserLog log = smallLog ();
+  log.objects.clear ();
+  pcl_crf::writeRosbagLog (path, log);
+  std::string bytes;
+  {
+    std::ifstream in (path, std::ios::binary);
+    bytes.assign (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
+  }
+  const float range_max = 10.0f;
+  const std::uint32_t beams = 8, corrupt = 0x7fffffff;
+  std::string pattern (reinterpret_cast<const char*> (&range_max), 4);  // range_max, then the ranges' count
+  pattern.append (reinterpret_cast<const char*> (&beams), 4);
+  const std::size_t at = bytes.find (pattern);
+  ASSERT_NE (at, std::string::npos);
+  bytes.replace (at + 4, 4, std::string (reinterpret_cast<const char*> (&corrupt), 4));
+  std::ofstream (path, std::ios::binary | std::ios::trunc) << bytes;
+  try {
+    pcl_crf::readRosbagLog (path);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("ranges or intensities declare more values than the message holds"),
+               std::string::npos)
+        << error.what ();
+  }
 }
 
 TEST_F (LogRosbag, WithoutSupportEveryCallSaysHowToEnableIt)

@@ -293,8 +293,12 @@ TEST_F (PipelineMethods, CorruptOrTruncatedCompositeModelIsAClearError)
                "line 3: a model of another method: expected 'method crf-m', found 'method icp+kmeans'");
   const std::string shipped = std::string (PCL_CRF_SOURCE_DIR) + "/data/models/crf-t.model";
   EXPECT_NE (loadError (*crf_m, shipped).find ("not a composite model"), std::string::npos) << loadError (*crf_m, shipped);
-  EXPECT_NE (loadError (*crf_m, file ("missing.model")).find ("cannot open the model file '" + file ("missing.model")),
+  EXPECT_NE (loadError (*crf_m, file ("missing.model"))
+                 .find ("cannot read the model file '" + file ("missing.model") + "': no such file"),
              std::string::npos);
+  fs::create_directories (file ("folder.model"));  // once "truncated: expected the header"
+  EXPECT_NE (loadError (*crf_m, file ("folder.model")).find ("': is a directory, not a file"), std::string::npos)
+      << loadError (*crf_m, file ("folder.model"));
   // Nothing to save before training: an error, and no file.
   EXPECT_THROW (makeCrfMMethod ()->saveModel (file ("untrained.model")), std::runtime_error);
   EXPECT_FALSE (fs::exists (file ("untrained.model")));

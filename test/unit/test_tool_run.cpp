@@ -186,7 +186,8 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
   {
     std::string arguments, message;
   } cases[] = {
-      {(dir_ / "missing.log").string (), "cannot open"},
+      {(dir_ / "missing.log").string (), "missing.log: cannot read the log: no such file"},
+      {dir_.string (), "cannot read the log: is a directory, not a file"},
       {log () + " --method nonsense", "unknown method 'nonsense'"},
       {log () + " --step 0", "--step needs a whole number >= 1"},
       {log () + " --step abc", "--step needs a number, not 'abc'"},

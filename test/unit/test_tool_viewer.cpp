@@ -234,7 +234,7 @@ TEST_F (ToolViewer, HelpAndErrors)
       {set + " --size 10,10 --screenshot a.png", "--size needs a width"},
       {set + " --pair 7 --screenshot a.png", "no such pair"},
       {set + " --prediction " + (dir_ / "nothing").string () + " --screenshot a.png", "no saved result"},
-      {"--log " + (dir_ / "missing.log").string () + " --screenshot a.png", "cannot open"},
+      {"--log " + (dir_ / "missing.log").string () + " --screenshot a.png", "cannot read the log: no such file"},
       {set + " --log x.log", "Expected one pair or dataset folder, or --log LOG"},
       {set + " --bogus --screenshot a.png", "Unknown option '--bogus' (see "},
       {set + " --screenshot a.png --method", "Option --method needs a value"},
