@@ -1,4 +1,5 @@
 #include <pcl_crf/evaluation/prediction_io.h>
+#include <pcl_crf/io/readable_file.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/point_types.h>
 
@@ -8,6 +9,7 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -68,6 +70,8 @@ readXYTheta (std::istringstream& in, const std::string& where)
   double x, y, theta;
   if (!(in >> x >> y >> theta) || !std::isfinite (x) || !std::isfinite (y) || !std::isfinite (theta))
     fail (where, "expected three finite numbers x y theta");
+  if (std::max (std::abs (x), std::abs (y)) > kMaxCoordinate)
+    fail (where, "a translation beyond 1e18 m");
   expectEnd (in, where);
   return makeRigid2d (x, y, theta);
 }
@@ -116,9 +120,10 @@ struct PredictionText
 PredictionText
 readPredictionText (const std::string& path)
 {
+  const std::string problem = unreadableFileProblem (path);
+  if (!problem.empty ())
+    throw DatasetError (path + ": cannot read (" + problem + ")");
   std::ifstream file (path);
-  if (!file)
-    throw DatasetError (path + ": cannot open");
   PredictionText text;
   std::set<std::string> seen;
   std::string line;

@@ -6,6 +6,7 @@
 #include <pcl_crf/matching/raw_features.h>
 #include <pcl_crf/matching/scan_matching.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -163,6 +164,12 @@ trainCrfMatching (const std::vector<ScanPair>& pairs, const MatchingParameters& 
   if (pairs.empty ())
     throw std::invalid_argument ("[pcl_crf::matching::trainCrfMatching] no training pair");
   std::vector<TrainingPair> training = prepareTrainingPairs (pairs, parameters);
+  const bool some_match = std::any_of (pairs.begin (), pairs.end (), [] (const ScanPair& pair) {
+    return std::any_of (pair.source_match.begin (), pair.source_match.end (), [] (int j) { return j != kNoMatch; });
+  });
+  if (!some_match)  // the boosting would learn "every point is an outlier"
+    throw std::invalid_argument ("[pcl_crf::matching::trainCrfMatching] the training pairs have no associated point "
+                                 "(every match is -1): nothing to learn associations from");
   CrfMatchingModel model;
   model.parameters = parameters;
   model.parameters.training_beam_spacing = trainingBeamSpacing (pairs);

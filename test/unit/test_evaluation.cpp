@@ -149,6 +149,7 @@ TEST (Evaluation, LoadPredictionIsStrict)
       {[&] { replaceInFile (text, "cluster 0 static", "cluster 1 static"); }, "expected cluster 0, got '1'"},
       {[&] { replaceInFile (cloud, " 0 -1\n", " 5 -1\n"); }, "has cluster 5, out of range [0, 1) and not -1"},
       {[&] { replaceInFile (cloud, " 0 -1\n", " 0 -7\n"); }, "has match -7, negative and not -1"},
+      {[&] { replaceInFile (text, "cluster 0 static ", "cluster 0 static 1e300 "); }, "a translation beyond 1e18 m"},
   };
   for (const auto& [corrupt, message] : cases) {
     fs::remove_all (dir);

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -165,12 +167,28 @@ TEST (MatchingTraining, PairsOfOnePointCannotTeachThePairwiseWeights)
   pair.source.conservativeResize (2, 1);
   pair.source_object.resize (1);
   pair.source_match.resize (1);
+  pair.source_match[0] = 0;  // associated: the pair teaches the local weights, not the pairwise ones
   try {
     m::trainCrfMatching ({pair}, m::MatchingParameters ());
     ADD_FAILURE () << "no exception";
   }
   catch (const std::invalid_argument& error) {
     EXPECT_NE (std::string (error.what ()).find ("no training pair has two or more source points"), std::string::npos)
+        << error.what ();
+  }
+}
+
+TEST (MatchingTraining, PairsWithoutAnAssociatedPointAreRefused)
+{
+  // Once a one-stump model that called every point an outlier (V 0), written with exit 0.
+  pcl_crf::ScanPair pair = simulatedPairs (11, 1).front ();
+  std::fill (pair.source_match.begin (), pair.source_match.end (), pcl_crf::kNoMatch);
+  try {
+    m::trainCrfMatching ({pair}, m::MatchingParameters ());
+    ADD_FAILURE () << "no exception";
+  }
+  catch (const std::invalid_argument& error) {
+    EXPECT_NE (std::string (error.what ()).find ("the training pairs have no associated point"), std::string::npos)
         << error.what ();
   }
 }
