@@ -20,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <iomanip>
 #include <sstream>
 
 namespace pcl_crf {
@@ -77,6 +78,15 @@ shortNumber (double value)
 {
   std::ostringstream text;
   text << value;
+  return text.str ();
+}
+
+/** \brief A time stamp [s] to the millisecond ("1575811858.273"). */
+std::string
+stampText (double seconds)
+{
+  std::ostringstream text;
+  text << std::fixed << std::setprecision (3) << seconds;
   return text.str ();
 }
 
@@ -307,6 +317,13 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
       scan.pose = scan.has_pose ? Rigid2d (pose * options.T_pose_laser) : Rigid2d::Identity ();
       log.has_reference_poses = log.has_reference_poses || scan.has_pose;
     }
+    if (!log.has_reference_poses && !ego.empty ())  // else "no reference poses", though the topic holds them
+      throw LogError (path + ": no scan of " + options.scan_topic + " (stamps " + stampText (log.scans.front ().stamp) +
+                      " to " + stampText (log.scans.back ().stamp) + " s) lies within the " +
+                      std::to_string (ego.stamps.size ()) + " poses of " + options.pose_topic + " (" +
+                      stampText (ego.stamps.front ()) + " to " + stampText (ego.stamps.back ()) +
+                      " s, at most " + shortNumber (options.max_pose_gap) +
+                      " s apart): are the scans' or the poses' stamps zero, repeated or out of order?");
   }
   for (const auto& topic : options.object_topics) {
     TrackedObject object;

@@ -218,6 +218,30 @@ TEST_F (LogRosbag, ScansAndPosesThatAreNotFiniteAreErrors)
   expectReadError (bad, "the position lies beyond 1e18 m");
 }
 
+TEST_F (LogRosbag, PosesThatCoverNoScanAreAnError)
+{
+  // Scan stamps of zero, or poses 100 s off, gave "the log has no reference poses" with
+  // exit 0 though the pose topic held hundreds.
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  pcl_crf::RosbagReadOptions options;
+  options.pose_topic = "/ego_pose";
+  const std::string path = (dir_ / "late.bag").string ();
+  pcl_crf::LaserLog log = smallLog ();
+  log.objects.clear ();
+  pcl_crf::writeRosbagLog (path, log, options);
+  options.pose_delay = 100.0;
+  try {
+    pcl_crf::readRosbagLog (path, options);
+    FAIL () << "no exception";
+  }
+  catch (const pcl_crf::LogError& error) {
+    EXPECT_NE (std::string (error.what ()).find ("no scan of /scan (stamps 1000.000 to 1000.300 s) lies within the 4 "
+                                                 "poses of /ego_pose"),
+               std::string::npos)
+        << error.what ();
+  }
+}
+
 TEST_F (LogRosbag, AScanWhoseRangesCountExceedsItsBytesIsAnError)
 {
   // ROS's deserializer sized the ranges from a corrupt count of 2^31 - 1 first: 8 GB and
