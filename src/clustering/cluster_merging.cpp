@@ -18,7 +18,8 @@ public:
   EffectiveCounts (const Eigen::MatrixXd& p, const std::vector<int>& labels)
     : p_ (p), total_ (p.colwise ().sum ().transpose ()), squares_ (p.colwise ().squaredNorm ().transpose ()),
       active_ (static_cast<std::size_t> (p.rows ()), 1), neff_sum_ (Eigen::VectorXd::Zero (p.rows ())),
-      count_ (Eigen::VectorXd::Zero (p.rows ())), neff_ (p.cols ())
+      count_ (Eigen::VectorXd::Zero (p.rows ())), neff_ (p.cols ()),
+      moves_ (static_cast<std::size_t> (p.cols ()), 0), ranked_count_ (static_cast<std::size_t> (p.cols ()), 0)
   {
     for (std::size_t i = 0; i < labels.size (); ++i)
     {
@@ -72,21 +73,52 @@ private:
     return squares_ (i) > 0.0 ? total_ (i) * total_ (i) / squares_ (i) : 0.0;  // Eq. (8) with p / Σp
   }
 
+  /** The most probable active cluster of point i, the lowest index on ties: a scan of
+   *  the clusters for its first kScans moves; after that the point keeps its kRanked
+   *  most probable active clusters, ranked then and again once all have been removed,
+   *  so that a point moved from cluster to cluster (thousands of copies of one point,
+   *  say) costs O(L) per kRanked removals, not per removal. */
   int
-  bestActive (Eigen::Index i) const
+  bestActive (Eigen::Index i)
   {
-    int best = -1;
+    if (++moves_[static_cast<std::size_t> (i)] <= kScans) {
+      int best = -1;
+      for (Eigen::Index l = 0; l < p_.rows (); ++l)
+        if (active_[l] && (best < 0 || p_ (l, i) > p_ (best, i)))
+          best = static_cast<int> (l);
+      return best;
+    }
+    if (ranked_.empty ())
+      ranked_.resize (static_cast<std::size_t> (p_.cols ()) * kRanked);
+    int* ranked = ranked_.data () + i * kRanked;
+    int& count = ranked_count_[static_cast<std::size_t> (i)];
+    for (int k = 0; k < count; ++k)
+      if (active_[ranked[k]])
+        return ranked[k];
+    scratch_.clear ();
     for (Eigen::Index l = 0; l < p_.rows (); ++l)
-      if (active_[l] && (best < 0 || p_ (l, i) > p_ (best, i)))
-        best = static_cast<int> (l);
-    return best;
+      if (active_[l])
+        scratch_.push_back (static_cast<int> (l));
+    count = static_cast<int> (std::min<std::size_t> (kRanked, scratch_.size ()));
+    std::partial_sort (scratch_.begin (), scratch_.begin () + count, scratch_.end (), [this, i] (int a, int b) {
+      return p_ (a, i) > p_ (b, i) || (p_ (a, i) == p_ (b, i) && a < b);
+    });
+    std::copy (scratch_.begin (), scratch_.begin () + count, ranked);
+    return count > 0 ? ranked[0] : -1;
   }
+
+  static constexpr int kScans = 4;
+  static constexpr int kRanked = 16;
 
   const Eigen::MatrixXd& p_;
   Eigen::VectorXd total_, squares_;
   std::vector<char> active_;  // not vector<bool>: bestActive () reads it for every point of a removed cluster
   Eigen::VectorXd neff_sum_, count_;
   Eigen::VectorXd neff_;  // N_eff of every point as last added to neff_sum_
+  std::vector<int> moves_;         // per point: bestActive () calls so far
+  std::vector<int> ranked_;        // kRanked per point (bestActive ()), allocated when first needed
+  std::vector<int> ranked_count_;  // per point: how many of its kRanked are ranked (0: none yet)
+  std::vector<int> scratch_;       // the active clusters, while ranking
 };
 
 void

@@ -10,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <sstream>
 
 namespace {
@@ -104,6 +106,75 @@ TEST (ClusteringMerge, DistinctClustersAndEmptyOnesAreHandled)
   EXPECT_EQ (labels, (std::vector<int>{0, 0, 1, 1}));
   std::vector<int> bad = {0, 5, 1, 1};
   EXPECT_THROW (mergeAmbiguousClusters (p, bad, 1.7), std::invalid_argument);
+}
+
+/** selectClusters () as Eq. (8) states it, recomputed from scratch at every step: the
+ *  active cluster whose points have the highest average N_eff (first on ties) goes while
+ *  that average exceeds the bound, its points to their most probable active cluster. */
+std::vector<int>
+selectClustersFromScratch (const Eigen::MatrixXd& p, std::vector<int>& labels, double max_average_neff)
+{
+  std::vector<bool> active (static_cast<std::size_t> (p.rows ()), true);
+  const auto neff = [&] (Eigen::Index i) {
+    double total = 0.0, squares = 0.0;
+    for (Eigen::Index l = 0; l < p.rows (); ++l)
+      if (active[l])
+        total += p (l, i), squares += p (l, i) * p (l, i);
+    return squares > 0.0 ? total * total / squares : 0.0;
+  };
+  for (;;) {
+    if (std::count (active.begin (), active.end (), true) <= 1)
+      break;
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero (p.rows ()), count = Eigen::VectorXd::Zero (p.rows ());
+    for (std::size_t i = 0; i < labels.size (); ++i)
+      sum (labels[i]) += neff (static_cast<Eigen::Index> (i)), count (labels[i]) += 1.0;
+    int worst = -1;
+    double highest = -1.0;
+    for (Eigen::Index l = 0; l < p.rows (); ++l)
+      if (active[l] && count (l) > 0.0 && sum (l) / count (l) > highest)
+        worst = static_cast<int> (l), highest = sum (l) / count (l);
+    if (worst < 0 || highest <= max_average_neff)
+      break;
+    active[worst] = false;
+    for (std::size_t i = 0; i < labels.size (); ++i)
+      if (labels[i] == worst) {
+        int best = -1;
+        for (Eigen::Index l = 0; l < p.rows (); ++l)
+          if (active[l] && (best < 0 || p (l, i) > p (best, i)))
+            best = static_cast<int> (l);
+        labels[i] = best;
+      }
+  }
+  std::vector<int> kept;
+  for (Eigen::Index l = 0; l < p.rows (); ++l)
+    if (active[l] && std::find (labels.begin (), labels.end (), static_cast<int> (l)) != labels.end ())
+      kept.push_back (static_cast<int> (l));
+  return kept;
+}
+
+TEST (ClusteringMerge, PointsMovedFromClusterToClusterEndWhereEq8Puts)
+{
+  // 60 clusters over 300 points, 100 of them copies of one point: removing cluster after
+  // cluster moves the copies dozens of times (they rank their clusters after four moves).
+  std::mt19937 rng (43);
+  std::uniform_real_distribution<double> uniform (0.0, 1.0);
+  Eigen::MatrixXd p (60, 300);
+  for (Eigen::Index i = 0; i < p.cols (); ++i)
+    for (Eigen::Index l = 0; l < p.rows (); ++l)
+      p (l, i) = std::pow (uniform (rng), 4.0);
+  p.rightCols (100).colwise () = p.col (0);
+  for (Eigen::Index i = 0; i < p.cols (); ++i)
+    p.col (i) /= p.col (i).sum ();
+  std::vector<int> labels (300);
+  for (std::size_t i = 0; i < labels.size (); ++i)
+    labels[i] = static_cast<int> (i % 60);
+  for (const double bound : {1.2, 2.0, 6.0}) {
+    std::vector<int> fast = labels, reference = labels;
+    const std::vector<int> kept = pcl_crf::clustering::selectClusters (p, fast, bound);
+    EXPECT_EQ (kept, selectClustersFromScratch (p, reference, bound)) << bound;
+    EXPECT_EQ (fast, reference) << bound;
+    EXPECT_LT (kept.size (), 60u) << bound;
+  }
 }
 
 TEST (ClusteringEgo, StaticClusterIsTheMahalanobisNearestToOdometry)
