@@ -244,64 +244,28 @@ TEST_F (LogCarmen, ReadsRobotLaser1)
 
 TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
 {
-  try {
-    pcl_crf::readCarmenLog ((dir_ / "missing.log").string ());
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("missing.log: cannot read the CARMEN log: no such file"),
-               std::string::npos)
-        << error.what ();
-  }
-  try {  // std::ifstream opens a directory; its reads then failed as "a corrupt gzip file?"
-    pcl_crf::readCarmenLog (dir_.string ());
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("cannot read the CARMEN log: is a directory, not a file"),
-               std::string::npos)
-        << error.what ();
-  }
+  const auto expectError = [] (const std::string& path, const std::string& fragment) {
+    try {
+      pcl_crf::readCarmenLog (path);
+      ADD_FAILURE () << "no exception; expected " << fragment;
+    }
+    catch (const pcl_crf::LogError& error) {
+      EXPECT_NE (std::string (error.what ()).find (fragment), std::string::npos) << error.what ();
+    }
+  };
+  expectError ((dir_ / "missing.log").string (), "missing.log: cannot read the CARMEN log: no such file");
+  // std::ifstream opens a directory; its reads then failed as "a corrupt gzip file?"
+  expectError (dir_.string (), "cannot read the CARMEN log: is a directory, not a file");
   const std::string broken = write ("broken.log", correctedLog (1) + "FLASER 4 1 2 x 4 0 0 0 0 0 0 1 h 1\n", false);
-  try {
-    pcl_crf::readCarmenLog (broken);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("broken.log:6: FLASER record: a range reading"), std::string::npos)
-        << error.what ();
-  }
+  expectError (broken, "broken.log:6: FLASER record: a range reading");
   // More ranges than the count: they were read as the pose, odometry and timestamp.
   const std::string longer = write ("longer.log", correctedLog (1) + "FLASER 2 1 2 3 0 0 0 0 0 0 1 h 1\n", false);
-  try {
-    pcl_crf::readCarmenLog (longer);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("longer.log:6: FLASER record: more fields than its 2 readings, pose, "
-                                                 "odometry and timestamp (the host name is a number"),
-               std::string::npos)
-        << error.what ();
-  }
+  expectError (longer, "longer.log:6: FLASER record: more fields than its 2 readings, pose, odometry and timestamp "
+                       "(the host name is a number");
   const std::string trailing = write ("trailing.log", correctedLog (1) + "FLASER 2 1 2 0 0 0 0 0 0 1 h 1 7\n", false);
-  try {
-    pcl_crf::readCarmenLog (trailing);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("host name and logger timestamp: '7'"), std::string::npos)
-        << error.what ();
-  }
+  expectError (trailing, "host name and logger timestamp: '7'");
   const std::string far = write ("far.log", correctedLog (1) + "FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1\n", false);
-  try {
-    pcl_crf::readCarmenLog (far);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("FLASER record: the pose x y theta lies beyond 1e18 m"),
-               std::string::npos)
-        << error.what ();
-  }
+  expectError (far, "FLASER record: the pose x y theta lies beyond 1e18 m");
   // Without the host name and logger timestamp (some converted logs): read as before.
   EXPECT_EQ (pcl_crf::readCarmenLog (write ("short.log", correctedLog (1) + "FLASER 2 1 2 0 0 0 0 0 0 1\n", false))
                  .scans.size (),
@@ -309,24 +273,12 @@ TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
   const std::string truncated = write ("cut.log", "FLASER 3 1 2 3 0 0\n", false);
   EXPECT_THROW (pcl_crf::readCarmenLog (truncated), pcl_crf::LogError);
   const std::string empty = write ("empty.log", "PARAM a b\nODOM 0 0 0 0 0 0 1 h 1\n", false);
-  try {
-    pcl_crf::readCarmenLog (empty);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("no FLASER or ROBOTLASER1 record"), std::string::npos);
-  }
+  expectError (empty, "no FLASER or ROBOTLASER1 record");
   const std::string not_gzip = write ("bad.log.gz", "\x1f\x8b garbage that is not deflate data", false);
   EXPECT_THROW (pcl_crf::readCarmenLog (not_gzip), pcl_crf::LogError);
   const std::string whole = write ("whole.log.gz", correctedLog (20), true);
   fs::resize_file (whole, fs::file_size (whole) / 2);  // a cut download
-  try {
-    pcl_crf::readCarmenLog (whole);
-    FAIL () << "no exception";
-  }
-  catch (const pcl_crf::LogError& error) {
-    EXPECT_NE (std::string (error.what ()).find ("truncated or corrupt gzip"), std::string::npos) << error.what ();
-  }
+  expectError (whole, "truncated or corrupt gzip");
   pcl_crf::CarmenReadOptions nonsense;
   nonsense.max_range = -1.0;
   EXPECT_THROW (pcl_crf::readCarmenLog (write ("ok.log", correctedLog (2), false), nonsense), pcl_crf::LogError);
