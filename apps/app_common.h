@@ -44,7 +44,8 @@ positionalArguments (int argc, char** argv, const std::set<std::string>& value_o
 /** \brief Checks a tool's command line: every argument written like an option must be one
  *  of \a value_options, followed by its value (an argument that is not itself one of the
  *  tool's options, so "--yaw-rate -0.1" works), or one of \a switches (-h and --help
- *  always are). PCL's parse_argument silently skips an unknown option or a missing value.
+ *  always are), each at most once. PCL's parse_argument silently skips an unknown option or a
+ *  missing value, and reads only the first of a repeated option.
  *  \return false after a print_error naming the option and pointing to -h. */
 inline bool
 checkOptions (int argc, char** argv, const std::set<std::string>& value_options,
@@ -52,8 +53,13 @@ checkOptions (int argc, char** argv, const std::set<std::string>& value_options,
 {
   switches.insert ({"-h", "--help"});
   auto known = [&] (const std::string& arg) { return value_options.count (arg) > 0 || switches.count (arg) > 0; };
+  std::set<std::string> given;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (known (arg) && !given.insert (arg).second) {  // parse_argument would read the first one only
+      pcl::console::print_error ("Option %s is given twice (see %s -h).\n", arg.c_str (), argv[0]);
+      return false;
+    }
     if (value_options.count (arg)) {
       if (i + 1 >= argc || known (argv[i + 1])) {
         pcl::console::print_error ("Option %s needs a value (see %s -h).\n", arg.c_str (), argv[0]);
@@ -86,6 +92,10 @@ numberOption (int argc, char** argv, const char* name, double& value)
   const double parsed = std::strtod (argv[index + 1], &end);
   if (end == argv[index + 1] || *end != '\0' || errno == ERANGE || !std::isfinite (parsed)) {
     pcl::console::print_error ("%s needs a number, not '%s'.\n", name, argv[index + 1]);
+    return false;
+  }
+  if (std::strpbrk (argv[index + 1], "xX") != nullptr) {  // strtod reads "0x10" as 16
+    pcl::console::print_error ("%s needs a decimal number, not '%s'.\n", name, argv[index + 1]);
     return false;
   }
   value = parsed;

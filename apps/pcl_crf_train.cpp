@@ -9,6 +9,8 @@
 
 #include "app_common.h"
 
+#include <algorithm>
+
 using namespace pcl::console;
 
 namespace {
@@ -54,6 +56,13 @@ main (int argc, char** argv)
     timer.tic ();
     const auto pairs = pcl_crf::loadDataset (positional.front ());
     print_highlight ("Training %s on %zu pairs of %s\n", method_name.c_str (), pairs.size (), positional.front ().c_str ());
+    const bool some_mover = std::any_of (pairs.begin (), pairs.end (), [] (const pcl_crf::ScanPair& pair) {
+      const int world = pair.staticObjectId ();
+      return std::any_of (pair.source_object.begin (), pair.source_object.end (), [world] (int id) { return id != world; });
+    });
+    if (!some_mover && method_name != "crf-matching")
+      print_warn ("No training pair has a point on a moving object: %s learns its clusters from the static world "
+                  "alone.\n", method_name.c_str ());
     method->train (pairs);
     method->saveModel (output);
     print_info ("Wrote "), print_value ("%s", output.c_str ()), print_info (" in %g s\n", timer.toc () / 1000.0);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -124,6 +126,9 @@ TEST_F (EvalTool, UnknownOptionsAndMissingValuesAreErrors)
       {"pcl_crf_eval", set + " --tolerance abc", "--tolerance needs a number, not 'abc'"},
       {"pcl_crf_eval", set + " --max-pairs 1.5", "--max-pairs needs a whole number >= 0"},
       {"pcl_crf_eval", set + " --method icp,kmeans,icp", "--method names 'icp' twice"},
+      {"pcl_crf_eval", set + " --tolerance 0x10", "--tolerance needs a decimal number, not '0x10'"},
+      // parse_argument read the first of a repeated option: "--format csv --format json" wrote csv.
+      {"pcl_crf_eval", set + " --format csv --format json", "Option --format is given twice"},
       {"pcl_crf_train", set + " --method crf-t -o " + (dir_ / "m").string () + " --bogus", "Unknown option '--bogus'"},
       {"pcl_crf_train", set + " -o " + (dir_ / "m").string () + " --method", "Option --method needs a value"},
   };
@@ -147,6 +152,31 @@ TEST_F (EvalTool, TrainToolRejectsMethodsWithoutModels)
   run = runTool ("pcl_crf_train", (dir_ / "set").string ());
   EXPECT_NE (run.exit_code, 0);
   EXPECT_NE (run.output.find ("required"), std::string::npos) << run.output;
+}
+
+TEST_F (EvalTool, TrainingWithoutAMoverWarns)
+{
+  // K-Means trained on the static world alone learns one cluster, and scored V 0 after,
+  // without a word.
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  pcl_crf::ScanPair pair = pcl_crf::loadDataset ((dir_ / "set").string ()).front ();
+  const int world = pair.staticObjectId ();
+  std::fill (pair.source_object.begin (), pair.source_object.end (), world);
+  std::fill (pair.target_object.begin (), pair.target_object.end (), world);
+  pair.objects.erase (std::remove_if (pair.objects.begin (), pair.objects.end (),
+                                      [] (const pcl_crf::ObjectTruth& object) { return !object.is_static; }),
+                      pair.objects.end ());
+  pcl_crf::saveDataset ({pair}, (dir_ / "still").string ());
+  const std::string model = " -o " + (dir_ / "m.model").string ();
+  auto run = runTool ("pcl_crf_train", (dir_ / "still").string () + " --method kmeans" + model);
+  EXPECT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("No training pair has a point on a moving object: kmeans learns its clusters from the "
+                              "static world alone"),
+             std::string::npos)
+      << run.output;
+  run = runTool ("pcl_crf_train", std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test --method kmeans" + model);
+  EXPECT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_EQ (run.output.find ("No training pair has a point on a moving object"), std::string::npos) << run.output;
 }
 
 TEST_F (EvalTool, TrainedModelIsUsedByEval)
