@@ -119,6 +119,21 @@ coordinateProblem (const pcl::PointCloud<PointT>& cloud, const std::string& name
   return "";
 }
 
+/** \brief Why the PCL classes cannot take their inputs, or "" when they can: the
+ *  indicesProblem () of \a indices, then the coordinateProblem () of \a source and of
+ *  \a target; each is checked when given (not null). */
+template <typename Index, typename PointSource, typename PointTarget> std::string
+inputProblem (const std::vector<Index>* indices, const pcl::PointCloud<PointSource>* source,
+              const pcl::PointCloud<PointTarget>* target)
+{
+  std::string problem = indices && source ? indicesProblem (*indices, source->size ()) : "";
+  if (problem.empty () && source)
+    problem = coordinateProblem (*source, "source");
+  if (problem.empty () && target)
+    problem = coordinateProblem (*target, "target");
+  return problem;
+}
+
 /** \brief toRigid2d (\a M), with a PCL_WARN naming what it drops when \a M is a finite
  *  transform that is not planar (nonPlanarPart ()): a guess or odometry in 3D, or one
  *  that scales. A non-finite \a M is left to the caller's own check.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace pcl_crf {
@@ -98,6 +99,11 @@ struct KnnIndex::Impl
   {
     return hasCopies () ? distinct : points;
   }
+  const Eigen::MatrixXd&
+  treePoints () const
+  {
+    return hasCopies () ? distinct : points;
+  }
 };
 
 KnnIndex::KnnIndex () : impl_ (std::make_unique<Impl> ()) {}
@@ -155,7 +161,7 @@ KnnIndex::search (const Eigen::MatrixXd& queries, int k) const
   const int found = static_cast<int> (std::min<Eigen::Index> (k, size ()));
   if (found == 0 || queries.cols () == 0)
     return result;
-  const Eigen::MatrixXd& tree_points = impl_->hasCopies () ? impl_->distinct : impl_->points;
+  const Eigen::MatrixXd& tree_points = std::as_const (*impl_).treePoints ();
   const int tree_found = static_cast<int> (std::min<Eigen::Index> (k, tree_points.cols ()));
   Eigen::MatrixXd query_copy = queries;
   // FLANN writes row-major (query x k) arrays: exactly our column-major (k x query) layout.

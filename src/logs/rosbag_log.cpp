@@ -125,35 +125,6 @@ laserScanProblem (const sensor_msgs::LaserScan& message)
   return {};
 }
 
-/** \brief Whether the lengths a serialized LaserScan declares (its frame id, ranges and
- *  intensities) fit its bytes. ROS's deserializer sizes each array from its declared
- *  length before reading it: a corrupt length of 2^31 allocated 8 GB (for 40 s) before
- *  the read failed. Layout: seq, stamp (2 x uint32), frame_id (uint32 length + bytes),
- *  7 float32 (angles, times, ranges), then two float32 arrays (uint32 count + values). */
-bool
-laserScanLengthsFit (const rosbag::MessageInstance& message)
-{
-  std::vector<std::uint8_t> bytes (message.size ());
-  ros::serialization::OStream stream (bytes.data (), static_cast<std::uint32_t> (bytes.size ()));
-  message.write (stream);
-  std::size_t at = 12;  // seq, stamp
-  const auto length = [&] (std::size_t item) -> bool {  // reads a uint32 length, skips its items
-    if (at + 4 > bytes.size ())
-      return false;
-    std::uint32_t count = 0;
-    std::memcpy (&count, bytes.data () + at, 4);  // little-endian, as ROS writes it
-    at += 4;
-    if (count > (bytes.size () - at) / item)
-      return false;
-    at += count * item;
-    return true;
-  };
-  if (!length (1))
-    return false;
-  at += 7 * 4;
-  return length (4) && length (4);
-}
-
 /** \brief What makes a PoseStamped message unusable, or an empty string: a position or
  *  orientation that is not finite, or an orientation of zero length. */
 std::string
@@ -177,6 +148,42 @@ messageError (const std::string& path, const rosbag::MessageInstance& message, c
 {
   return LogError (path + ": topic " + message.getTopic () + ", message at " + std::to_string (message.getTime ().toSec ()) +
                    " s: " + problem);
+}
+
+/** \brief The LaserScan of \a message, deserialized from its bytes once the lengths they
+ *  declare (frame id, ranges, intensities) are checked to fit them. ROS's deserializer
+ *  sizes each array from its declared length before reading it: a corrupt length of 2^31
+ *  allocated 8 GB (for 40 s) before the read failed. Layout: seq, stamp (2 x uint32),
+ *  frame_id (uint32 length + bytes), 7 float32 (angles, times, ranges), then two float32
+ *  arrays (uint32 count + values).
+ *  \throws LogError (messageError ()) when a length does not fit. */
+sensor_msgs::LaserScan
+readLaserScan (const std::string& path, const rosbag::MessageInstance& message)
+{
+  std::vector<std::uint8_t> bytes (message.size ());
+  ros::serialization::OStream out (bytes.data (), static_cast<std::uint32_t> (bytes.size ()));
+  message.write (out);
+  std::size_t at = 12;  // seq, stamp
+  const auto length = [&] (std::size_t item) -> bool {  // reads a uint32 length, skips its items
+    if (at + 4 > bytes.size ())
+      return false;
+    std::uint32_t count = 0;
+    std::memcpy (&count, bytes.data () + at, 4);  // little-endian, as ROS writes it
+    at += 4;
+    if (count > (bytes.size () - at) / item)
+      return false;
+    at += count * item;
+    return true;
+  };
+  const bool frame_id_fits = length (1);
+  at += 7 * 4;
+  if (!frame_id_fits || !length (4) || !length (4))
+    throw messageError (path, message, "its frame id, ranges or intensities declare more values than the message "
+                                       "holds (a corrupt bag)");
+  sensor_msgs::LaserScan scan;
+  ros::serialization::IStream in (bytes.data (), static_cast<std::uint32_t> (bytes.size ()));
+  ros::serialization::deserialize (in, scan);
+  return scan;
 }
 
 LaserScanRecord
@@ -277,17 +284,15 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
       if (message.getTopic () == options.scan_topic) {
         if (options.max_scans > 0 && log.scans.size () >= options.max_scans)
           continue;
-        if (message.getDataType () == ros::message_traits::datatype<sensor_msgs::LaserScan> () &&
-            !laserScanLengthsFit (message))
-          throw messageError (path, message, "its frame id, ranges or intensities declare more values than the "
-                                             "message holds (a corrupt bag)");
-        const auto scan = message.instantiate<sensor_msgs::LaserScan> ();
-        if (!scan || scan->ranges.empty ())
+        if (message.getMD5Sum () != ros::message_traits::md5sum<sensor_msgs::LaserScan> ())
+          continue;  // not a LaserScan of this definition (what instantiate () would give null for)
+        const sensor_msgs::LaserScan scan = readLaserScan (path, message);  // its bytes read once
+        if (scan.ranges.empty ())
           continue;
-        const std::string problem = laserScanProblem (*scan);
+        const std::string problem = laserScanProblem (scan);
         if (!problem.empty ())
           throw messageError (path, message, problem);
-        log.scans.push_back (toRecord (*scan));
+        log.scans.push_back (toRecord (scan));
         continue;
       }
       const auto pose = message.instantiate<geometry_msgs::PoseStamped> ();

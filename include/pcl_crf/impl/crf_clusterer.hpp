@@ -77,11 +77,7 @@ pcl_crf::CRFClusterer<PointT>::prepare (Eigen::Matrix2Xd& source, Eigen::Matrix2
     PCL_ERROR ("[pcl_crf::%s::extract] no weights: call setWeights () or loadModel ()\n", getClassName ().c_str ());
     return false;
   }
-  std::string problem = indicesProblem (*indices_, input_->size ());
-  if (problem.empty ())
-    problem = coordinateProblem (*input_, "source");
-  if (problem.empty ())
-    problem = coordinateProblem (*target_, "target");
+  const std::string problem = inputProblem (indices_.get (), input_.get (), target_.get ());
   if (!problem.empty ())
   {
     PCL_ERROR ("[pcl_crf::%s::extract] %s\n", getClassName ().c_str (), problem.c_str ());

@@ -114,11 +114,10 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   }
   if (!pcl::PCLBase<PointSource>::initCompute ())
     return false;
-  std::string problem = indicesProblem (*indices_, input_->size ());
-  if (problem.empty ())
-    problem = coordinateProblem (*input_, "source");
-  if (problem.empty ())
-    problem = coordinateProblem (*target_, "target");
+  // The target is checked when it is prepared again (a prepared one passed the check).
+  const bool prepare_target = target_cloud_updated_ || !target_prepared_ ||
+                              !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters);
+  const std::string problem = inputProblem (indices_.get (), input_.get (), prepare_target ? target_.get () : nullptr);
   if (!problem.empty ()) {
     PCL_ERROR ("[pcl_crf::%s::%s] %s.\n", getClassName ().c_str (), method, problem.c_str ());
     return false;
@@ -129,8 +128,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
     PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point.\n", getClassName ().c_str (), method);
     return false;
   }
-  if (target_cloud_updated_ || !target_prepared_ ||
-      !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters)) {
+  if (prepare_target) {
     target_prepared_.reset ();
     const Eigen::Matrix2Xd target_xy = toMatrix2X (*target_, &target_index_);
     if (target_xy.cols () == 0) {

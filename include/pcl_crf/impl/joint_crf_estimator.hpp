@@ -98,11 +98,8 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::align (PointCloudSource& ou
   // Indices given with setIndices () (not PCL's own "every point") are checked here:
   // Base::align copies the points they name before computeTransformation runs, and
   // builds PCL's kd-tree of the target, which aborts on coordinates near 1e37.
-  std::string problem = input_ && indices_ && !fake_indices_ ? indicesProblem (*indices_, input_->size ()) : "";
-  if (problem.empty () && input_)
-    problem = coordinateProblem (*input_, "source");
-  if (problem.empty () && target_)
-    problem = coordinateProblem (*target_, "target");
+  const std::string problem =
+      inputProblem (fake_indices_ ? nullptr : indices_.get (), input_.get (), target_.get ());
   if (!problem.empty ()) {
     PCL_ERROR ("[pcl_crf::%s::align] %s.\n", reg_name_.c_str (), problem.c_str ());
     clearResults ();
