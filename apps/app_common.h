@@ -1,14 +1,16 @@
 #pragma once
 // Small helpers shared by the pcl_crf_* tools.
 
+#include <pcl_crf/core/decimal_text.h>
+
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -87,18 +89,12 @@ numberOption (int argc, char** argv, const char* name, double& value)
     pcl::console::print_error ("%s needs a value (see -h).\n", name);
     return false;
   }
-  char* end = nullptr;
-  errno = 0;
-  const double parsed = std::strtod (argv[index + 1], &end);
-  if (end == argv[index + 1] || *end != '\0' || errno == ERANGE || !std::isfinite (parsed)) {
-    pcl::console::print_error ("%s needs a number, not '%s'.\n", name, argv[index + 1]);
-    return false;
-  }
-  if (std::strpbrk (argv[index + 1], "xX") != nullptr) {  // strtod reads "0x10" as 16
+  const std::optional<double> parsed = pcl_crf::parseDecimal (argv[index + 1]);
+  if (!parsed) {
     pcl::console::print_error ("%s needs a decimal number, not '%s'.\n", name, argv[index + 1]);
     return false;
   }
-  value = parsed;
+  value = *parsed;
   return true;
 }
 

@@ -1,5 +1,6 @@
 // pcl_crf_simulate: writes a dataset of simulated, labelled 2D laser scan pairs
 // of urban driving scenes (see data/SIMULATOR.md).
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/simulation/scan_pair_simulator.h>
 
@@ -109,12 +110,10 @@ printHelp (const char* program)
 double
 toDouble (const std::string& option, const std::string& text)
 {
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod (text.c_str (), &end);
-  if (text.empty () || end != text.c_str () + text.size () || errno == ERANGE || !std::isfinite (value))
-    throw UsageError (option + " expects a number, got '" + text + "'");
-  return value;
+  const std::optional<double> value = pcl_crf::parseDecimal (text);
+  if (!value)
+    throw UsageError (option + " expects a decimal number, got '" + text + "'");
+  return *value;
 }
 
 long long

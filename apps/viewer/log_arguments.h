@@ -10,9 +10,9 @@
 
 #include "../app_common.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -33,13 +33,12 @@ numberListOption (int argc, char** argv, const char* name, std::vector<double>& 
   std::stringstream in (text);
   std::string part;
   while (std::getline (in, part, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod (part.c_str (), &end);
-    if (part.empty () || *end != '\0' || !std::isfinite (v)) {
+    const std::optional<double> v = pcl_crf::parseDecimal (part);
+    if (!v) {
       pcl::console::print_error ("%s needs %zu comma-separated numbers, not '%s'.\n", name, count, text.c_str ());
       return false;
     }
-    parsed.push_back (v);
+    parsed.push_back (*v);
   }
   if (parsed.size () != count) {
     pcl::console::print_error ("%s needs %zu comma-separated numbers, not '%s'.\n", name, count, text.c_str ());

@@ -1,10 +1,9 @@
 #include <pcl_crf/clustering/clustering_model.h>
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/readable_file.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -23,14 +22,6 @@ fail (const std::string& where, int line, const std::string& what)
 {
   throw std::runtime_error ("[pcl_crf::clustering::readModel] " + where +
                             (line > 0 ? ":" + std::to_string (line) : std::string ()) + ": " + what);
-}
-
-std::string
-exact (double value)
-{
-  char buffer[32];
-  std::snprintf (buffer, sizeof (buffer), "%.17g", value);
-  return buffer;
 }
 
 /** Every key of the file, in order: the weight names then the feature settings. */
@@ -55,13 +46,12 @@ parseEntry (const std::string& text, int line, const std::string& where, std::ma
     fail (where, line, "unknown key '" + key + "'");
   if (values.count (key))
     fail (where, line, "key '" + key + "' appears twice");
-  char* end = nullptr;
-  const double value = std::strtod (number.c_str (), &end);
-  if (number.empty () || *end != '\0' || (words >> extra))
+  const std::optional<double> value = parseDecimal (number);
+  if (number.empty () || (words >> extra))
     fail (where, line, "'" + key + "' needs exactly one number");
-  if (!std::isfinite (value))
-    fail (where, line, "'" + key + "' is not a finite number");
-  values[key] = value;
+  if (!value)
+    fail (where, line, "'" + key + "': '" + number + "' is not a finite decimal number");
+  values[key] = *value;
 }
 
 void
@@ -91,11 +81,11 @@ writeModel (std::ostream& os, const CrfClusteringModel& model)
   os << kMagic << ' ' << kModelVersion << '\n'
      << "# CRF-Clustering (Tipaldi & Ramos, IROS 2009) weights, maximum pseudo-likelihood\n";
   if (model.prior_sigma > 0.0)
-    os << "# learned with a Gaussian prior of sigma " << exact (model.prior_sigma) << '\n';
+    os << "# learned with a Gaussian prior of sigma " << formatGeneral (model.prior_sigma, 17) << '\n';
   for (int k = 0; k < kWeightCount; ++k)
-    os << weightNames ()[k] << ' ' << exact (model.weights (k)) << '\n';
-  os << "min_neighbour_distance " << exact (model.features.min_neighbour_distance) << '\n'
-     << "min_spacing " << exact (model.features.min_spacing) << '\n';
+    os << weightNames ()[k] << ' ' << formatGeneral (model.weights (k), 17) << '\n';
+  os << "min_neighbour_distance " << formatGeneral (model.features.min_neighbour_distance, 17) << '\n'
+     << "min_spacing " << formatGeneral (model.features.min_spacing, 17) << '\n';
 }
 
 CrfClusteringModel

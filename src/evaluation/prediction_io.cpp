@@ -1,4 +1,5 @@
 #include <pcl_crf/evaluation/prediction_io.h>
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/readable_file.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/point_types.h>
@@ -11,9 +12,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <locale>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -28,9 +30,7 @@ std::string
 xyTheta (const Rigid2d& T)
 {
   const Eigen::Vector3d v = toXYTheta (T);
-  char buffer[128];
-  std::snprintf (buffer, sizeof (buffer), "%.17g %.17g %.17g", v.x (), v.y (), v.z ());
-  return buffer;
+  return formatGeneral (v.x (), 17) + " " + formatGeneral (v.y (), 17) + " " + formatGeneral (v.z (), 17);
 }
 
 void
@@ -64,16 +64,26 @@ expectEnd (std::istringstream& in, const std::string& where)
     fail (where, "unexpected trailing value '" + extra + "'");
 }
 
+/** \brief The next word as a finite decimal number (parseDecimal ()), or nothing. */
+std::optional<double>
+readNumber (std::istringstream& in)
+{
+  std::string word;
+  if (!(in >> word))
+    return std::nullopt;
+  return parseDecimal (word);
+}
+
 Rigid2d
 readXYTheta (std::istringstream& in, const std::string& where)
 {
-  double x, y, theta;
-  if (!(in >> x >> y >> theta) || !std::isfinite (x) || !std::isfinite (y) || !std::isfinite (theta))
-    fail (where, "expected three finite numbers x y theta");
-  if (std::max (std::abs (x), std::abs (y)) > kMaxCoordinate)
+  const std::optional<double> x = readNumber (in), y = readNumber (in), theta = readNumber (in);
+  if (!x || !y || !theta)
+    fail (where, "expected three finite decimal numbers x y theta");
+  if (std::max (std::abs (*x), std::abs (*y)) > kMaxCoordinate)
     fail (where, "a translation beyond 1e18 m");
   expectEnd (in, where);
-  return makeRigid2d (x, y, theta);
+  return makeRigid2d (*x, *y, *theta);
 }
 
 /** \brief A "0" or "1" token (has_match, has_cluster). */
@@ -152,9 +162,10 @@ readPredictionText (const std::string& path)
     else if (key == "has_cluster")
       text.has_cluster = readFlag (in, key, where);
     else if (key == "seconds") {
-      if (!(in >> text.prediction.seconds) || !std::isfinite (text.prediction.seconds) ||
-          text.prediction.seconds < 0.0)
+      const std::optional<double> seconds = readNumber (in);
+      if (!seconds || *seconds < 0.0)
         fail (where, "'seconds' needs a finite time >= 0");
+      text.prediction.seconds = *seconds;
       expectEnd (in, where);
     }
     else if (key == "method" || key == "pair") {  // the rest of the line: a folder name may hold spaces
@@ -185,6 +196,7 @@ savePrediction (const ScanPair& pair, const Prediction& prediction, const std::s
   writePredictionCloud (pair, prediction, (fs::path (dir) / "prediction.pcd").string ());
   const std::string path = (fs::path (dir) / "prediction.txt").string ();
   std::ofstream file (path);
+  file.imbue (std::locale::classic ());  // indices without a host program's digit grouping
   file << kMagic << " 1\n";
   file << "method " << method << "\n";
   file << "pair " << pair.name << "\n";
@@ -194,7 +206,7 @@ savePrediction (const ScanPair& pair, const Prediction& prediction, const std::s
   for (std::size_t k = 0; k < prediction.cluster_motions.size (); ++k)
     file << "cluster " << k << (static_cast<int> (k) == prediction.static_cluster ? " static " : " moving ")
          << xyTheta (prediction.cluster_motions[k]) << "\n";
-  file << "seconds " << prediction.seconds << "\n";
+  file << "seconds " << formatGeneral (prediction.seconds, 6) << "\n";
   if (!file)
     throw DatasetError (path + ": write failed");
 }

@@ -1,8 +1,9 @@
 #include <pcl_crf/evaluation/report.h>
+#include <pcl_crf/core/decimal_text.h>
 
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
+#include <locale>
 #include <sstream>
 
 namespace pcl_crf {
@@ -13,13 +14,10 @@ formatNumber (double value)
 {
   if (std::isnan (value))
     return "";
-  char buffer[64];
   const double magnitude = std::abs (value);
   if (magnitude != 0.0 && (magnitude < 1e-3 || magnitude >= 1e5))
-    std::snprintf (buffer, sizeof (buffer), "%.3e", value);
-  else
-    std::snprintf (buffer, sizeof (buffer), "%.4f", value);
-  return buffer;
+    return formatScientific (value, 3);
+  return formatFixed (value, 4);
 }
 
 std::string
@@ -27,9 +25,7 @@ jsonNumber (double value)
 {
   if (!std::isfinite (value))
     return "null";
-  char buffer[64];
-  std::snprintf (buffer, sizeof (buffer), "%.9g", value);
-  return buffer;
+  return formatGeneral (value, 9);
 }
 
 std::string
@@ -54,10 +50,8 @@ cell (const MetricSummary& row)
   return formatNumber (row.mean) + " ± " + formatNumber (row.stddev);
 }
 
-}  // namespace
-
 void
-printEvaluationTable (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+printTable (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
 {
   if (evaluations.empty ())
     return;
@@ -89,7 +83,7 @@ printEvaluationTable (std::ostream& out, const std::vector<MethodEvaluation>& ev
 }
 
 void
-writeEvaluationCsv (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+printCsv (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
 {
   out << "method,metric,unit,mean,std,count\n";
   for (const auto& evaluation : evaluations)
@@ -99,7 +93,7 @@ writeEvaluationCsv (std::ostream& out, const std::vector<MethodEvaluation>& eval
 }
 
 void
-writeEvaluationJson (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+printJson (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
 {
   out << "{\"methods\": [";
   for (std::size_t m = 0; m < evaluations.size (); ++m) {
@@ -122,6 +116,39 @@ writeEvaluationJson (std::ostream& out, const std::vector<MethodEvaluation>& eva
     out << "]}";
   }
   out << "]}\n";
+}
+
+/** Writes through \a write into a buffer in the classic locale, then to \a out: numbers
+ *  and counts without a host program's decimal comma or digit grouping ("1.234" for
+ *  1234 under a German std::locale::global). */
+template <typename Write>
+void
+writeInClassicLocale (std::ostream& out, Write write)
+{
+  std::ostringstream text;
+  text.imbue (std::locale::classic ());
+  write (text);
+  out << text.str ();
+}
+
+}  // namespace
+
+void
+printEvaluationTable (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+{
+  writeInClassicLocale (out, [&evaluations] (std::ostream& text) { printTable (text, evaluations); });
+}
+
+void
+writeEvaluationCsv (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+{
+  writeInClassicLocale (out, [&evaluations] (std::ostream& text) { printCsv (text, evaluations); });
+}
+
+void
+writeEvaluationJson (std::ostream& out, const std::vector<MethodEvaluation>& evaluations)
+{
+  writeInClassicLocale (out, [&evaluations] (std::ostream& text) { printJson (text, evaluations); });
 }
 
 }  // namespace pcl_crf

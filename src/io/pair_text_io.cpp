@@ -1,11 +1,13 @@
 #include "pair_text_io.h"
 
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/io/readable_file.h>
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
+#include <locale>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -34,13 +36,10 @@ struct LineReader
     std::string token;
     if (!(in >> token))
       fail (std::string ("missing ") + what);
-    char* end = nullptr;
-    const double value = std::strtod (token.c_str (), &end);
-    if (end == token.c_str () || *end != '\0')
-      fail (std::string ("'") + token + "' is not a number (" + what + ")");
-    if (!std::isfinite (value))
-      fail (std::string (what) + " is NaN or infinite");
-    return value;
+    const std::optional<double> value = parseDecimal (token);
+    if (!value)
+      fail (std::string ("'") + token + "' is not a finite decimal number (" + what + ")");
+    return *value;
   }
 
   int
@@ -158,27 +157,22 @@ writePairText (const ScanPair& pair, const std::string& path)
   std::ofstream file (path);
   if (!file)
     throw DatasetError (path + ": cannot write");
-  char buffer[512];
-  auto xyt = [&] (const Rigid2d& T) {
+  file.imbue (std::locale::classic ());  // ids without a host program's digit grouping
+  const auto exact = [] (double value) { return formatGeneral (value, 17); };
+  const auto xyt = [&exact] (const Rigid2d& T) {
     const Eigen::Vector3d v = toXYTheta (T);
-    std::snprintf (buffer, sizeof (buffer), "%.17g %.17g %.17g", v.x (), v.y (), v.z ());
-    return std::string (buffer);
+    return exact (v.x ()) + " " + exact (v.y ()) + " " + exact (v.z ());
   };
   file << kMagic << " " << kVersion << "\n";
-  std::snprintf (buffer, sizeof (buffer), "sensor %d %.17g %.17g %.17g\n", pair.sensor.beam_count,
-                 pair.sensor.angle_min, pair.sensor.angle_increment, pair.sensor.range_max);
-  file << buffer;
+  file << "sensor " << pair.sensor.beam_count << " " << exact (pair.sensor.angle_min) << " "
+       << exact (pair.sensor.angle_increment) << " " << exact (pair.sensor.range_max) << "\n";
   file << "odometry " << xyt (pair.odometry.T_source_target) << "\n";
   file << "odometry_covariance";
-  for (int k = 0; k < 9; ++k) {
-    std::snprintf (buffer, sizeof (buffer), " %.17g", pair.odometry.covariance (k / 3, k % 3));
-    file << buffer;
-  }
+  for (int k = 0; k < 9; ++k)
+    file << " " << exact (pair.odometry.covariance (k / 3, k % 3));
   file << "\n";
-  if (pair.odometry.interval > 0.0) {
-    std::snprintf (buffer, sizeof (buffer), "interval %.17g\n", pair.odometry.interval);
-    file << buffer;
-  }
+  if (pair.odometry.interval > 0.0)
+    file << "interval " << exact (pair.odometry.interval) << "\n";
   for (const auto& object : pair.objects)
     file << "object " << object.id << (object.is_static ? " static " : " moving ")
          << xyt (object.T_target_source) << " " << (object.kind.empty () ? "object" : object.kind)

@@ -1,5 +1,6 @@
 #include "pcd_blob_io.h"
 
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/io/readable_file.h>
 
@@ -7,6 +8,7 @@
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -15,7 +17,9 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 namespace pcl_crf {
 namespace detail {
@@ -229,9 +233,8 @@ declaredPointCount (const std::string& path)
   const PcdHeaderLines lines = headerLines (path);
   const auto count = [&lines] (const char* keyword) {
     const std::vector<std::string> words = wordsAfter (lines, keyword);
-    char* end = nullptr;
-    const double value = words.size () == 1 ? std::strtod (words[0].c_str (), &end) : 0.0;
-    return end != nullptr && *end == '\0' && value > 0.0 ? value : 0.0;
+    const std::optional<double> value = words.size () == 1 ? parseDecimal (words[0]) : std::nullopt;
+    return value && *value > 0.0 ? *value : 0.0;
   };
   return std::max (count ("POINTS"), count ("WIDTH") * count ("HEIGHT"));
 }
@@ -311,6 +314,105 @@ checkBodySize (const std::string& path, const pcl::PCLPointCloud2& header, int e
                         std::to_string (sizes.uncompressed) + " bytes declared (corrupt binary_compressed data)");
 }
 
+/** \brief The words of \a line, split at spaces, tabs and carriage returns. */
+void
+splitWords (const std::string& line, std::vector<std::string_view>& words)
+{
+  words.clear ();
+  const std::string_view text (line);
+  std::size_t begin = text.find_first_not_of (" \t\r");
+  while (begin != std::string_view::npos) {
+    const std::size_t end = std::min (text.find_first_of (" \t\r", begin), text.size ());
+    words.push_back (text.substr (begin, end - begin));
+    begin = text.find_first_not_of (" \t\r", end);
+  }
+}
+
+template <typename T> bool
+storeWhole (double value, std::uint8_t* at)
+{
+  if (value != std::floor (value) || value < static_cast<double> (std::numeric_limits<T>::lowest ()) ||
+      value > static_cast<double> (std::numeric_limits<T>::max ()))
+    return false;
+  storeAs<T> (value, at);
+  return true;
+}
+
+/** \brief Stores the ascii value \a word at \a at as \a datatype: "nan" (any case) is
+ *  NaN, as PCL reads it, and only in a float field; a number is read with
+ *  parseDecimal (); an integer field takes whole numbers in its type's range.
+ *  \return false when \a word is none of these */
+bool
+storeAsciiValue (std::string_view word, std::uint8_t datatype, std::uint8_t* at)
+{
+  const bool nan = word.size () == 3 && std::tolower (word[0]) == 'n' && std::tolower (word[1]) == 'a' &&
+                   std::tolower (word[2]) == 'n';
+  if (datatype == pcl::PCLPointField::FLOAT32) {
+    const std::optional<float> value = nan ? std::numeric_limits<float>::quiet_NaN () : parseDecimalFloat (word);
+    if (value)
+      storeAs<float> (*value, at);
+    return value.has_value ();
+  }
+  const std::optional<double> value = nan ? std::numeric_limits<double>::quiet_NaN () : parseDecimal (word);
+  if (datatype == pcl::PCLPointField::FLOAT64 && value) {
+    storeAs<double> (*value, at);
+    return true;
+  }
+  if (!value || nan)
+    return false;
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: return storeWhole<std::int8_t> (*value, at);
+    case pcl::PCLPointField::UINT8: return storeWhole<std::uint8_t> (*value, at);
+    case pcl::PCLPointField::INT16: return storeWhole<std::int16_t> (*value, at);
+    case pcl::PCLPointField::UINT16: return storeWhole<std::uint16_t> (*value, at);
+    case pcl::PCLPointField::INT32: return storeWhole<std::int32_t> (*value, at);
+    case pcl::PCLPointField::UINT32: return storeWhole<std::uint32_t> (*value, at);
+    case pcl::PCLPointField::INT64: return storeWhole<std::int64_t> (*value, at);
+    case pcl::PCLPointField::UINT64: return storeWhole<std::uint64_t> (*value, at);
+    default: return storeWhole<std::uint8_t> (*value, at);  // BOOL, the one type left that PCL gives a size
+  }
+}
+
+/** \brief Reads the ascii body of \a path (after byte \a data_index) into \a blob, whose
+ *  header is read, the same whatever the program's locale (storeAsciiValue ()). PCL's
+ *  reader parses with a stream in the global C++ locale: after a host program's
+ *  std::locale::global (std::locale ("de_DE.UTF-8")) it read "-9.2848825" as -9. Blank
+ *  and '#' lines are skipped, as PCL skips them (checkBodySize () counted the others).
+ *  \throws DatasetError naming the point and the value that is not a number of its field */
+void
+readAsciiBody (const std::string& path, std::size_t data_index, pcl::PCLPointCloud2& blob)
+{
+  std::size_t values_per_point = 0;
+  for (const pcl::PCLPointField& field : blob.fields)
+    values_per_point += field.count;
+  const std::size_t points = static_cast<std::size_t> (blob.width) * blob.height;
+  blob.data.assign (points * blob.point_step, 0);
+  blob.is_dense = true;
+  std::ifstream in (path, std::ios::binary);
+  in.seekg (static_cast<std::streamoff> (data_index));
+  std::string line;
+  std::vector<std::string_view> words;
+  for (std::size_t point = 0; point < points && std::getline (in, line);) {
+    splitWords (line, words);
+    if (words.empty () || words.front ().front () == '#')
+      continue;
+    if (words.size () != values_per_point)
+      throw DatasetError (path + ": point " + std::to_string (point) + " has " + std::to_string (words.size ()) +
+                          " values, the header's fields take " + std::to_string (values_per_point));
+    std::size_t word = 0;
+    for (const pcl::PCLPointField& field : blob.fields)
+      for (std::uint32_t k = 0; k < field.count; ++k, ++word) {
+        std::uint8_t* at = &blob.data[point * blob.point_step + field.offset + k * pcl::getFieldSize (field.datatype)];
+        if (!storeAsciiValue (words[word], field.datatype, at))
+          throw DatasetError (path + ": point " + std::to_string (point) + " has " + field.name + " '" +
+                              std::string (words[word]) + "', not a decimal number of its " +
+                              describeLayout (field.datatype, field.count));
+        blob.is_dense = blob.is_dense && !std::isnan (valueAt (at, field.datatype));
+      }
+    ++point;
+  }
+}
+
 }  // namespace
 
 pcl::PCLPointCloud2
@@ -335,7 +437,9 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
   bool exact = true;
   for (const auto& field : fields)
     exact = blob.fields[checkField (blob, field, path)].datatype == field.datatype && exact;
-  if (reader.read (path, blob) != 0)
+  if (data_type == kAscii)
+    readAsciiBody (path, data_index, blob);
+  else if (reader.read (path, blob) != 0)
     throw DatasetError (path + ": not a readable PCD file (truncated or corrupt data)");
   if (exact)
     return blob;

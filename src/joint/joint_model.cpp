@@ -1,10 +1,9 @@
 #include <pcl_crf/joint/joint_model.h>
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/readable_file.h>
 #include <pcl_crf/matching/range_profile.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -23,14 +22,6 @@ constexpr const char* kMatchingPart = "crf_matching_model";
 fail (const std::string& name, const std::string& what)
 {
   throw std::runtime_error ("[pcl_crf::joint::readJointModel] " + name + ": " + what);
-}
-
-std::string
-exact (double value)
-{
-  char buffer[32];
-  std::snprintf (buffer, sizeof (buffer), "%.17g", value);
-  return buffer;
 }
 
 /** Reads the next line, failing with \a expected in the message at the end of the text. */
@@ -52,11 +43,10 @@ readEntry (std::istream& is, const std::string& name, const std::string& key)
   words >> word >> number;
   if (word != key)
     fail (name, "expected '" + key + "', found '" + word + "'");
-  char* end = nullptr;
-  const double value = std::strtod (number.c_str (), &end);
-  if (number.empty () || *end != '\0' || (words >> extra) || !std::isfinite (value))
-    fail (name, "'" + key + "' needs exactly one finite number");
-  return value;
+  const std::optional<double> value = parseDecimal (number);
+  if (!value || (words >> extra))
+    fail (name, "'" + key + "' needs exactly one finite decimal number");
+  return *value;
 }
 
 /** The text between "begin <part>" and "end <part>". */
@@ -117,10 +107,10 @@ void
 writeJointModel (const JointModel& model, std::ostream& os)
 {
   os << kMagic << ' ' << kJointModelVersion << '\n';
-  os << "prior_sigma " << exact (model.prior_sigma) << '\n';
+  os << "prior_sigma " << formatGeneral (model.prior_sigma, 17) << '\n';
   os << "min_cluster_points " << model.min_cluster_points << '\n';
   for (int k = 0; k < kJointWeightCount; ++k)
-    os << jointWeightNames ()[k] << ' ' << exact (model.weights (k)) << '\n';
+    os << jointWeightNames ()[k] << ' ' << formatGeneral (model.weights (k), 17) << '\n';
   os << "begin " << kClusteringPart << '\n';
   clustering::writeModel (os, model.initial_clustering);
   os << "end " << kClusteringPart << '\n';

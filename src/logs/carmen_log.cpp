@@ -1,13 +1,12 @@
 #include <pcl_crf/logs/carmen_log.h>
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/readable_file.h>
 
 #include <boost/iostreams/filter/gzip.hpp>
 #include <boost/iostreams/filtering_stream.hpp>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -21,19 +20,18 @@ class LineCursor
 public:
   explicit LineCursor (const std::string& line) : position_ (line.c_str ()) {}
 
+  /** The next word as a finite decimal number (parseDecimal ()); false, with \a value
+   *  untouched, at the end of the line or when the word is not one. */
   bool
   nextNumber (double& value)
   {
-    skipSpace ();
-    if (*position_ == '\0')
+    std::string word;
+    if (!nextWord (word))
       return false;
-    char* end = nullptr;
-    errno = 0;
-    value = std::strtod (position_, &end);
-    if (end == position_ || (*end != '\0' && !std::isspace (static_cast<unsigned char> (*end))))
-      return false;
-    position_ = end;
-    return std::isfinite (value);
+    const std::optional<double> number = parseDecimal (word);
+    if (number)
+      value = *number;
+    return number.has_value ();
   }
 
   bool
@@ -159,11 +157,9 @@ private:
     std::string host;
     if (!cursor.nextWord (host))
       return;
-    char* end = nullptr;
-    std::strtod (host.c_str (), &end);
     const std::string more = std::string (record) + " record: more fields than its " + std::to_string (count) +
                              " readings, pose, odometry and timestamp";
-    if (end != host.c_str () && *end == '\0')
+    if (parseDecimal (host))
       fail (more + " (the host name is a number: does the record hold more readings than its count says?)");
     number (cursor, record, "the logger timestamp");
     std::string extra;

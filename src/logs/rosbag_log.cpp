@@ -1,5 +1,6 @@
 #include <pcl_crf/logs/rosbag_log.h>
 
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/dataset_io.h>
 
 // The ROS headers are only seen by this file; the CMake option PCL_CRF_WITH_ROSBAG
@@ -20,8 +21,6 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <iomanip>
-#include <sstream>
 
 namespace pcl_crf {
 
@@ -76,18 +75,14 @@ requireTopic (const std::string& path, const std::vector<std::pair<std::string, 
 std::string
 shortNumber (double value)
 {
-  std::ostringstream text;
-  text << value;
-  return text.str ();
+  return formatGeneral (value, 6);
 }
 
 /** \brief A time stamp [s] to the millisecond ("1575811858.273"). */
 std::string
 stampText (double seconds)
 {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision (3) << seconds;
-  return text.str ();
+  return formatFixed (seconds, 3);
 }
 
 /** \brief What makes a LaserScan message unusable, or an empty string when nothing does:

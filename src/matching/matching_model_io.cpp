@@ -85,15 +85,6 @@ readStage (ModelReader& reader, int index)
   return stage;
 }
 
-/** Shortest text that reads back to exactly \a value. */
-std::string
-formatNumber (double value)
-{
-  char buffer[64];
-  const auto result = std::to_chars (buffer, buffer + sizeof (buffer), value);
-  return std::string (buffer, result.ptr);
-}
-
 }  // namespace
 
 void
@@ -104,7 +95,7 @@ writeModel (const CrfMatchingModel& model, std::ostream& os)
   std::ostringstream text;
   text.imbue (std::locale::classic ());
   const MatchingParameters& p = model.parameters;
-  const auto number = [] (double value) { return formatNumber (value); };
+  const auto number = [] (double value) { return formatShortest (value); };
   text << kMagic << ' ' << kModelFileVersion << '\n'
        << "# CRF-Matching (Ramos, Fox & Durrant-Whyte, RSS 2007; Tipaldi & Ramos, ICRA 2010, Sec. IV-C).\n"
        << "# Units: metres, radians. Written by pcl_crf::matching::writeModel.\n"
@@ -135,7 +126,7 @@ writeModel (const CrfMatchingModel& model, std::ostream& os)
     const StageModel& stage = model.stages[k];
     text << "stage " << k << '\n' << "# weights: " << kWeightNames << '\n' << "crf_weights";
     for (Eigen::Index w = 0; w < stage.crf_weights.size (); ++w)
-      text << ' ' << formatNumber (stage.crf_weights (w));
+      text << ' ' << formatShortest (stage.crf_weights (w));
     text << '\n' << "data_boosting\n";
     stage.data_boosting.write (text);
     text << "outlier_boosting\n";

@@ -1,12 +1,10 @@
 #pragma once
 // Internal: the line reader of the CRF-Matching model file (matching_model_io.cpp).
 
+#include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/crf/adaboost_stumps.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <istream>
 #include <limits>
 #include <sstream>
@@ -71,24 +69,20 @@ public:
   double
   number (const std::string& key, const std::string& text) const
   {
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod (text.c_str (), &end);
-    if (end == text.c_str () || *end != '\0' || errno == ERANGE)
-      fail ("'" + key + "': '" + text + "' is not a number");
-    if (!std::isfinite (value))
-      fail ("'" + key + "': '" + text + "' is not a finite number");
-    return value;
+    const std::optional<double> value = parseDecimal (text);
+    if (!value)
+      fail ("'" + key + "': '" + text + "' is not a finite decimal number");
+    return *value;
   }
 
   /** \a value as the shortest text that reads back as it ("0.25", "-1", "1e-09"). */
   static std::string
   shortest (double value)
   {
-    char text[32];
+    std::string text;
     for (int digits = 1; digits <= 17; ++digits) {
-      std::snprintf (text, sizeof (text), "%.*g", digits, value);
-      if (std::strtod (text, nullptr) == value)
+      text = formatGeneral (value, digits);
+      if (parseDecimal (text) == value)
         break;
     }
     return text;

@@ -1,8 +1,9 @@
 #include <pcl_crf/simulation/laser_scanner.h>
+#include <pcl_crf/core/decimal_text.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <limits>
+#include <string>
 
 namespace pcl_crf {
 namespace simulation {
@@ -29,9 +30,8 @@ double
 storedCoordinate (double value)
 {
   // Mirrors pcl::io::savePCDFileASCII (precision 8) and the float parse on loading.
-  char text[64];
-  std::snprintf (text, sizeof (text), "%.8g", static_cast<double> (static_cast<float> (value)));
-  return static_cast<double> (std::strtof (text, nullptr));
+  const std::string text = formatGeneral (static_cast<double> (static_cast<float> (value)), 8);
+  return static_cast<double> (parseDecimalFloat (text).value_or (std::numeric_limits<float>::quiet_NaN ()));
 }
 
 SimulatedScan

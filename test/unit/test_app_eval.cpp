@@ -123,7 +123,7 @@ TEST_F (EvalTool, UnknownOptionsAndMissingValuesAreErrors)
       {"pcl_crf_eval", set + " -x -q", "Unknown option '-x'"},
       {"pcl_crf_eval", set + " --tolerance", "Option --tolerance needs a value (see "},
       {"pcl_crf_eval", set + " --method --tolerance 0.2", "Option --method needs a value"},
-      {"pcl_crf_eval", set + " --tolerance abc", "--tolerance needs a number, not 'abc'"},
+      {"pcl_crf_eval", set + " --tolerance abc", "--tolerance needs a decimal number, not 'abc'"},
       {"pcl_crf_eval", set + " --max-pairs 1.5", "--max-pairs needs a whole number >= 0"},
       {"pcl_crf_eval", set + " --method icp,kmeans,icp", "--method names 'icp' twice"},
       {"pcl_crf_eval", set + " --tolerance 0x10", "--tolerance needs a decimal number, not '0x10'"},

@@ -211,6 +211,32 @@ TEST_F (DatasetIo, AsciiRowsBeyondTheDeclaredPointsAreAnError)
   expectLoadError (pair_dir, "target.pcd: the header declares 2 points (WIDTH x HEIGHT, POINTS), the ascii data hold 3");
 }
 
+TEST_F (DatasetIo, AsciiValuesAreDecimalNumbersOfTheirField)
+{
+  // pcl_crf reads ascii bodies itself: PCL's reader parses in the global C++ locale (under
+  // a German one "-9.28" read as -9) and took "3x" as 3, "0x1" as 0 and "3,5" as 3.
+  const std::string pair_dir = writeSmallPair ();
+  const ScanPair expected = pcl_crf::loadScanPair (pair_dir);
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  const std::string row = "3.0999999 -0.5 0 3";
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"3.0999999 -0.5 0 3x", "point 2 has label '3x', not a decimal number of its TYPE U SIZE 4 COUNT 1"},
+           {"3.0999999 -0.5 0 3.5", "point 2 has label '3.5', not a decimal number of its TYPE U SIZE 4"},
+           {"3.0999999 -0.5 0 nan", "point 2 has label 'nan'"},
+           {"0x1 -0.5 0 3", "point 2 has x '0x1', not a decimal number of its TYPE F SIZE 4"},
+           {"3,0999999 -0.5 0 3", "point 2 has x '3,0999999'"},
+           {"3.0999999 -0.5 0", "point 2 has 3 values, the header's fields take 4"}}) {
+    replaceInFile (target, row, bad);
+    expectLoadError (pair_dir, "target.pcd: " + message);
+    replaceInFile (target, bad, row);
+  }
+  // Blank lines, '#' lines and tabs in the body, as PCL's reader takes them.
+  replaceInFile (target, row, "\n# a comment\n3.0999999\t-0.5 0  3\r");
+  const ScanPair spaced = pcl_crf::loadScanPair (pair_dir);
+  EXPECT_EQ (spaced.target, expected.target);
+  EXPECT_EQ (spaced.target_object, expected.target_object);
+}
+
 TEST_F (DatasetIo, APointCountNoFileOfItsSizeHoldsIsAnErrorBeforeAllocating)
 {
   // PCL's readHeader () allocates the declared cloud: 4e9 points failed with a bare
@@ -401,7 +427,7 @@ TEST_F (DatasetIo, PairTextErrorsNameTheLine)
   const std::string pair_dir = writeSmallPair ();
   const fs::path text = fs::path (pair_dir) / "pair.txt";
   replaceInFile (text, "sensor 5", "sensor five");
-  expectLoadError (pair_dir, "pair.txt:2: 'five' is not a number");
+  expectLoadError (pair_dir, "pair.txt:2: 'five' is not a finite decimal number");
   replaceInFile (text, "sensor five", "sensor 5");
   replaceInFile (text, "pcl_crf_pair 1", "pcl_crf_pair 9");
   expectLoadError (pair_dir, "unsupported format version");
@@ -439,7 +465,20 @@ TEST_F (DatasetIo, NanInPairTextIsAnError)
 {
   const std::string pair_dir = writeSmallPair ();
   replaceInFile (fs::path (pair_dir) / "pair.txt", "odometry 0.10000000000000001", "odometry nan");
-  expectLoadError (pair_dir, "NaN or infinite");
+  expectLoadError (pair_dir, "'nan' is not a finite decimal number");
+}
+
+TEST_F (DatasetIo, HexadecimalOrCommaNumbersInPairTextAreErrors)
+{
+  // strtod read "0x10" as 16; a decimal comma is what a German locale would have written.
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path text = fs::path (pair_dir) / "pair.txt";
+  replaceInFile (text, "odometry 0.10000000000000001", "odometry 0x10");
+  expectLoadError (pair_dir, "pair.txt:3: '0x10' is not a finite decimal number");
+  replaceInFile (text, "odometry 0x10", "odometry 0,10000000000000001");
+  expectLoadError (pair_dir, "'0,10000000000000001' is not a finite decimal number");
+  replaceInFile (text, "odometry 0,10000000000000001", "odometry +0.10000000000000001");
+  EXPECT_NEAR (pcl_crf::loadScanPair (pair_dir).odometry.T_source_target.translation ().x (), 0.1, 1e-15);
 }
 
 TEST_F (DatasetIo, ScanIntervalIsOptionalAndPositive)

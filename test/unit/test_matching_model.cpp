@@ -280,7 +280,7 @@ TEST_F (MatchingModelTest, MalformedModelFilesGiveClearErrors)
   EXPECT_NE (missing.find ("bad.model: line "), std::string::npos) << missing;
   // NaN values.
   const std::string nan = readError (editedModel (*model_, "residual_scale 0.05", "residual_scale nan"));
-  EXPECT_NE (nan.find ("'residual_scale': 'nan' is not a finite number"), std::string::npos) << nan;
+  EXPECT_NE (nan.find ("'residual_scale': 'nan' is not a finite decimal number"), std::string::npos) << nan;
   const std::string nan_weight = readError (editedModel (*model_, "crf_weights ", "crf_weights nan "));
   EXPECT_NE (nan_weight.find ("crf_weights"), std::string::npos) << nan_weight;
   // Out of range, truncated, and a broken AdaBoost block.

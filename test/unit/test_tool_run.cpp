@@ -190,7 +190,7 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
       {dir_.string (), "cannot read the log: is a directory, not a file"},
       {log () + " --method nonsense", "unknown method 'nonsense'"},
       {log () + " --step 0", "--step needs a whole number >= 1"},
-      {log () + " --step abc", "--step needs a number, not 'abc'"},
+      {log () + " --step abc", "--step needs a decimal number, not 'abc'"},
       {log () + " --max-pairs -2", "--max-pairs needs a whole number >= 0"},
       {log () + " --start 99", "no scan pair"},
       {log () + " --laser-offset 1,2", "--laser-offset needs 3 comma-separated numbers"},
