@@ -174,9 +174,11 @@ TEST_F (GermanLocale, FilesWrittenReadTheSameAsInTheCLocale)
     GTEST_SKIP () << kGerman << " is not installed (localedef -i de_DE -f UTF-8 de_DE.UTF-8)";
   pcl_crf::saveScanPair (pair, german_dir.string ());
   pcl_crf::savePrediction (pair, prediction, "joint", (german_dir / "prediction").string ());
-  EXPECT_EQ (fileText (german_dir / "pair.txt"), fileText (c_dir / "pair.txt"));
+  for (const char* file : {"pair.txt", "source.pcd", "target.pcd"})
+    EXPECT_EQ (fileText (german_dir / file), fileText (c_dir / file)) << file;
   EXPECT_NE (fileText (german_dir / "pair.txt").find ("object 1234 static"), std::string::npos);
-  EXPECT_EQ (fileText (german_dir / "prediction" / "prediction.txt"), fileText (c_dir / "prediction" / "prediction.txt"));
+  for (const char* file : {"prediction.txt", "prediction.pcd"})
+    EXPECT_EQ (fileText (german_dir / "prediction" / file), fileText (c_dir / "prediction" / file)) << file;
   const pcl_crf::Prediction read = pcl_crf::loadPrediction ((german_dir / "prediction").string ());
   EXPECT_TRUE (read.cluster_motions.front ().isApprox (prediction.cluster_motions.front (), 1e-15));
   EXPECT_DOUBLE_EQ (read.seconds, 0.00123);
