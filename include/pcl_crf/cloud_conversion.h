@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pcl_crf/core/beam_order.h>
 #include <pcl_crf/core/planar_transform.h>
 
 #include <pcl/console/print.h>
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_crf {
@@ -57,6 +59,48 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indi
 {
   return detail::finiteXY (
       cloud, indices.size (), [&indices] (std::size_t k) { return static_cast<std::size_t> (indices[k]); }, kept);
+}
+
+namespace detail {
+
+/** \brief \a xy with its columns, and \a kept with them, in beam order (beamOrder ()):
+ *  unchanged when they are in one. */
+inline Eigen::Matrix2Xd
+inBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
+{
+  const std::vector<int> order = beamOrder (xy);
+  bool reordered = false;
+  for (std::size_t k = 0; k < order.size () && !reordered; ++k)
+    reordered = order[k] != static_cast<int> (k);
+  if (!reordered)
+    return xy;
+  Eigen::Matrix2Xd ordered (2, xy.cols ());
+  std::vector<int> ordered_kept (kept.size ());
+  for (std::size_t k = 0; k < order.size (); ++k) {
+    ordered.col (static_cast<Eigen::Index> (k)) = xy.col (order[k]);
+    ordered_kept[k] = kept[static_cast<std::size_t> (order[k])];
+  }
+  kept = std::move (ordered_kept);
+  return ordered;
+}
+
+}  // namespace detail
+
+/** \brief toMatrix2X () of a laser scan for the CRF chains: its columns in beam order
+ *  (beamOrder (): the cloud's order when that is one; a cloud through pcl::VoxelGrid, a
+ *  kd-tree or a shuffle is sorted by bearing). \a kept receives the cloud index of every
+ *  column, so that results map back to the user's points. */
+template <typename PointT> Eigen::Matrix2Xd
+scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>& kept)
+{
+  return detail::inBeamOrder (toMatrix2X (cloud, &kept), kept);
+}
+
+/** \brief scanToMatrix2X () of the points of \a cloud at \a indices. */
+template <typename PointT, typename Index> Eigen::Matrix2Xd
+scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indices, std::vector<int>& kept)
+{
+  return detail::inBeamOrder (toMatrix2X (cloud, indices, &kept), kept);
 }
 
 /** \brief The position in \a indices of the first index outside a cloud of \a size

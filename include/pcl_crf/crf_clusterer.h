@@ -25,8 +25,8 @@ namespace pcl_crf {
  *  among them.
  *
  *  Input: the source scan (earlier) and target scan (later), each in its own sensor
- *  frame with the source points **in beam order** (the CRF is a chain along the scan),
- *  and point correspondences (index_query = source point, index_match = target point;
+ *  frame (the CRF is a chain along the source scan: in the points' order when it is a
+ *  beam order, else sorted by bearing, pcl_crf::beamOrder ()), and point correspondences (index_query = source point, index_match = target point;
  *  from any association method). Only x and y are used. Output, like
  *  pcl::EuclideanClusterExtraction: clusters of source point indices, largest first,
  *  plus per cluster its rigid motion T_target_source (maps source-frame points into the
@@ -35,7 +35,7 @@ namespace pcl_crf {
  *
  *  \code
  *  pcl_crf::CRFClusterer<pcl::PointXYZ> clusterer;
- *  clusterer.setInputSource (source);                 // beam order
+ *  clusterer.setInputSource (source);                 // a laser scan
  *  clusterer.setInputTarget (target);
  *  clusterer.setCorrespondences (correspondences);
  *  clusterer.setOdometry (T_source_target, covariance);
@@ -59,7 +59,7 @@ public:
 
   CRFClusterer () = default;
 
-  /** \brief The source scan (points in beam order). */
+  /** \brief The source scan (a laser scan; see the class comment for its order). */
   void
   setInputSource (const PointCloudConstPtr& cloud) { pcl::PCLBase<PointT>::setInputCloud (cloud); }
 
@@ -259,6 +259,8 @@ private:
   using pcl::PCLBase<PointT>::indices_;
 
   PointCloudConstPtr target_;
+  /** the cloud index of every source scan column (prepare ()). */
+  std::vector<int> source_index_;
   pcl::CorrespondencesConstPtr correspondences_;
   Odometry odometry_;
   bool has_odometry_ = false;

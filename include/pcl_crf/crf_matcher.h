@@ -25,8 +25,10 @@ namespace pcl_crf {
  *  point of another scan, or declares it an outlier, by exact inference on a
  *  conditional random field over the scan's chain of points.
  *
- *  Both clouds must hold one 2D scan each **in beam order** (the order the
- *  laser measured them; the chain follows it), x/y in metres, z ignored. Points
+ *  Both clouds must hold one 2D scan each, x/y in metres in the sensor's frame, z
+ *  ignored. The chain follows the beam order: the points' order when it is one (the
+ *  order the laser measured them, either way round), else the points sorted by bearing
+ *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). Points
  *  with a NaN x or y are skipped; every index reported refers to the input
  *  clouds. A trained model is required (setModel / loadModel; pcl_crf_train
  *  writes one, data/models/crf-matching.model is the default).
@@ -43,7 +45,7 @@ namespace pcl_crf {
  *  pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ> matcher;
  *  if (!matcher.loadModel ("data/models/crf-matching.model"))
  *    return;
- *  matcher.setInputSource (source);          // scans in beam order
+ *  matcher.setInputSource (source);          // one laser scan each
  *  matcher.setInputTarget (target);
  *  matcher.setOdometry (odometry);           // or setInitialGuess (T_target_source)
  *  pcl::Correspondences correspondences;
@@ -270,9 +272,19 @@ public:
   Matrix4
   getTransformation () const;
 
-  /** \brief The full result of the last run, in the indices of the valid points. */
+  /** \brief The full result of the last run: its source point k is the source cloud's
+   *  point getMatchResultSourceIndices ()[k], its target point j the target cloud's
+   *  getMatchResultTargetIndices ()[j] (the finite points, in beam order). */
   const matching::MatchResult&
   getMatchResult () const { return result_; }
+
+  /** \brief The source cloud index of every source point of getMatchResult (). */
+  const std::vector<int>&
+  getMatchResultSourceIndices () const { return source_index_; }
+
+  /** \brief The target cloud index of every target point of getMatchResult (). */
+  const std::vector<int>&
+  getMatchResultTargetIndices () const { return target_index_; }
 
 protected:
   using Base::corr_name_;

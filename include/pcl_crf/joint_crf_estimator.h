@@ -101,8 +101,10 @@ public:
    *  setIndices () is a point of the source cloud: PCL's align copies the indexed
    *  points before any estimator runs, and would read past the cloud. An index outside
    *  it gives PCL_ERROR naming it, no result and hasConverged () == false. Only the
-   *  indexed points are estimated (in their order, which must be the beam order), and
-   *  \a output holds them moved by the static world's motion. */
+   *  indexed points are estimated, and \a output holds them moved by the static world's
+   *  motion. The chains follow the beam order: the points' order when it is one (a
+   *  laser's, clockwise or counter-clockwise), else the points sorted by bearing
+   *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). */
   void
   align (PointCloudSource& output, const Matrix4& guess);
 
@@ -134,10 +136,20 @@ public:
   const pcl::Indices&
   getMovedAway () const { return moved_away_; }
 
-  /** \brief Everything the last align() found, in the core's frame-explicit form
-   *  (indices into the finite indexed points of the source cloud, in index order). */
+  /** \brief Everything the last align() found, in the core's frame-explicit form: its
+   *  source point k is the source cloud's point getResultSourceIndices ()[k], its
+   *  target point j the target cloud's getResultTargetIndices ()[j] (the finite points,
+   *  in beam order). */
   const joint::JointResult&
   getResult () const { return result_; }
+
+  /** \brief The source cloud index of every source point of getResult (). */
+  const std::vector<int>&
+  getResultSourceIndices () const { return result_source_index_; }
+
+  /** \brief The target cloud index of every target point of getResult (). */
+  const std::vector<int>&
+  getResultTargetIndices () const { return result_target_index_; }
 
 protected:
   void
@@ -158,9 +170,9 @@ private:
   /** The indexed source points (every point without setIndices ()) moved by \a T. */
   void
   moveSource (const Matrix4& T, PointCloudSource& output) const;
+  /** The getters' results from result_ (of \a source and \a target, the scans it was estimated from). */
   void
-  storeResults (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const std::vector<int>& source_index,
-                const std::vector<int>& target_index);
+  storeResults (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target);
   /** Distinct target points the static cluster's points are associated with in the last result. */
   int
   staticMatches () const;
@@ -171,6 +183,8 @@ private:
   Odometry odometry_;
   Eigen::Matrix3d guess_covariance_ = Eigen::Vector3d (0.25, 0.25, 0.05).asDiagonal ();
   joint::JointResult result_;
+  std::vector<int> result_source_index_;
+  std::vector<int> result_target_index_;
   pcl::Correspondences correspondences_;
   std::vector<pcl::PointIndices> clusters_;
   std::vector<Matrix4, Eigen::aligned_allocator<Matrix4>> cluster_transformations_;

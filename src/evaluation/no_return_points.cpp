@@ -1,4 +1,5 @@
 #include <pcl_crf/evaluation/no_return_points.h>
+#include <pcl_crf/core/beam_order.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +23,19 @@ struct ExactPointHash
   }
 };
 
+/** The columns \a kept of \a points, in that order. */
+Eigen::Matrix2Xd
+columns (const Eigen::Matrix2Xd& points, const std::vector<int>& kept)
+{
+  Eigen::Matrix2Xd out (2, static_cast<Eigen::Index> (kept.size ()));
+  for (std::size_t k = 0; k < kept.size (); ++k)
+    out.col (static_cast<Eigen::Index> (k)) = points.col (kept[k]);
+  return out;
+}
+
 /** The indices of the points of \a scan that are returns (isReturn ()), each position
- *  once: a return at the coordinates of an earlier one is left out. */
+ *  once (a return at the coordinates of an earlier one is left out), in beam order
+ *  (beamOrder (): increasing unless the scan was in no beam order). */
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {
@@ -34,27 +46,24 @@ returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
     if (isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second)
       kept.push_back (static_cast<int> (i));
-  return kept;
-}
-
-/** Whether a point of either scan of \a pair is left out (returnsOf ()). */
-bool
-leavesOutAPoint (const ScanPair& pair)
-{
-  const auto leavesOut = [&pair] (const Eigen::Matrix2Xd& scan) {
-    return static_cast<Eigen::Index> (returnsOf (scan, pair.sensor.range_max).size ()) != scan.cols ();
-  };
-  return leavesOut (pair.source) || leavesOut (pair.target);
-}
-
-/** The columns \a kept of \a points, in that order. */
-Eigen::Matrix2Xd
-columns (const Eigen::Matrix2Xd& points, const std::vector<int>& kept)
-{
-  Eigen::Matrix2Xd out (2, static_cast<Eigen::Index> (kept.size ()));
+  const std::vector<int> order = beamOrder (columns (scan, kept));
+  std::vector<int> ordered (kept.size ());
   for (std::size_t k = 0; k < kept.size (); ++k)
-    out.col (static_cast<Eigen::Index> (k)) = points.col (kept[k]);
-  return out;
+    ordered[k] = kept[static_cast<std::size_t> (order[k])];
+  return ordered;
+}
+
+/** Whether the returns of either scan of \a pair (returnsOf ()) leave out a point or
+ *  reorder them. */
+bool
+changesAScan (const ScanPair& pair)
+{
+  PairReturns returns;  // the indices alone: no copy of the pair
+  returns.source_size = static_cast<int> (pair.source.cols ());
+  returns.target_size = static_cast<int> (pair.target.cols ());
+  returns.source_index = returnsOf (pair.source, pair.sensor.range_max);
+  returns.target_index = returnsOf (pair.target, pair.sensor.range_max);
+  return !returns.keepsEveryPoint ();
 }
 
 /** The entries \a kept of \a values (empty stays empty: no ground truth). */
@@ -98,14 +107,14 @@ public:
   void
   train (const std::vector<ScanPair>& training_pairs) override
   {
-    if (std::none_of (training_pairs.begin (), training_pairs.end (), leavesOutAPoint)) {
+    if (std::none_of (training_pairs.begin (), training_pairs.end (), changesAScan)) {
       method_->train (training_pairs);  // the usual case: no copy
       return;
     }
     std::vector<ScanPair> returns;
     returns.reserve (training_pairs.size ());
     for (const ScanPair& pair : training_pairs)
-      returns.push_back (leavesOutAPoint (pair) ? checkedReturns (pair).pair : pair);
+      returns.push_back (changesAScan (pair) ? checkedReturns (pair).pair : pair);
     method_->train (returns);
   }
 
@@ -127,7 +136,7 @@ public:
     const std::string problem = odometryProblem (pair.odometry);
     if (!problem.empty ())
       throw std::invalid_argument ("pair '" + pair.name + "': " + problem);
-    if (!leavesOutAPoint (pair))
+    if (!changesAScan (pair))
       return method_->predict (pair);  // the usual case: no copy of the pair
     const PairReturns returns = checkedReturns (pair);
     return liftToAllPoints (method_->predict (returns.pair), returns);

@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <random>
+#include <vector>
 
 namespace {
 
@@ -120,6 +124,41 @@ TYPED_TEST (CRFClustererTest, RecoversKnownMotions)
   EXPECT_EQ (marginals[0].size (), 2);
   EXPECT_NEAR (marginals[0].sum (), 1.0, 1e-9);
   EXPECT_GT (marginals[0] (0), 0.99);
+}
+
+TYPED_TEST (CRFClustererTest, AShuffledSourceIsChainedInBeamOrder)
+{
+  // A source cloud out of beam order (a kd-tree's or a voxel grid's, here shuffled) is
+  // chained in beam order: the same clusters and motions, with the shuffled cloud's indices.
+  this->clusterer.extract (this->clusters);
+  const auto transformations = this->clusterer.getTransformations ();
+  std::vector<int> order (this->scene.source->size ()), position (order.size ());
+  std::iota (order.begin (), order.end (), 0);
+  std::mt19937 rng (9);
+  std::shuffle (order.begin (), order.end (), rng);
+  typename pcl::PointCloud<TypeParam>::Ptr source (new pcl::PointCloud<TypeParam>);
+  for (std::size_t k = 0; k < order.size (); ++k) {
+    source->push_back ((*this->scene.source)[static_cast<std::size_t> (order[k])]);
+    position[static_cast<std::size_t> (order[k])] = static_cast<int> (k);
+  }
+  pcl::CorrespondencesPtr correspondences (new pcl::Correspondences);
+  for (const pcl::Correspondence& c : *this->scene.correspondences)
+    correspondences->emplace_back (position[c.index_query], c.index_match, c.distance);
+  this->clusterer.setInputSource (source);
+  this->clusterer.setCorrespondences (correspondences);
+  std::vector<pcl::PointIndices> shuffled;
+  this->clusterer.extract (shuffled);
+  ASSERT_EQ (shuffled.size (), this->clusters.size ());
+  for (std::size_t l = 0; l < shuffled.size (); ++l) {
+    std::vector<int> mapped;
+    for (const int i : shuffled[l].indices)
+      mapped.push_back (order[static_cast<std::size_t> (i)]);
+    std::sort (mapped.begin (), mapped.end ());
+    std::vector<int> expected (this->clusters[l].indices.begin (), this->clusters[l].indices.end ());
+    std::sort (expected.begin (), expected.end ());
+    EXPECT_EQ (mapped, expected) << "cluster " << l;
+    EXPECT_EQ (this->clusterer.getTransformations ()[l], transformations[l]) << "cluster " << l;
+  }
 }
 
 TYPED_TEST (CRFClustererTest, WithoutOdometryTheLargestClusterIsStatic)

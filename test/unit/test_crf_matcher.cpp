@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <random>
 
 namespace {
 
@@ -109,6 +110,46 @@ TYPED_TEST (CrfMatcherTest, CorrespondencesOfARigidlyMovedRoom)
                static_cast<Eigen::Index> (this->matcher_.getCandidates ()[i].size () + 1));
     EXPECT_NEAR (this->matcher_.getMarginals ()[i].sum (), 1.0, 1e-9);
   }
+}
+
+TYPED_TEST (CrfMatcherTest, ShuffledCloudsAreMatchedInBeamOrder)
+{
+  // Clouds out of beam order (a kd-tree's or a voxel grid's, here shuffled) are chained
+  // in beam order: the same matches and motion, with the shuffled clouds' indices.
+  std::mt19937 rng (7);
+  const auto shuffle = [&rng] (const pcl::PointCloud<TypeParam>& cloud, std::vector<int>& order) {
+    order.resize (cloud.size ());
+    std::iota (order.begin (), order.end (), 0);
+    std::shuffle (order.begin (), order.end (), rng);
+    typename pcl::PointCloud<TypeParam>::Ptr out (new pcl::PointCloud<TypeParam>);
+    for (const int i : order)
+      out->push_back (cloud[static_cast<std::size_t> (i)]);
+    return out;
+  };
+  std::vector<int> source_order, target_order;
+  typename TestFixture::Matcher shuffled;
+  shuffled.setModel (defaultModel ());
+  shuffled.setInputSource (shuffle (*this->source_, source_order));
+  shuffled.setInputTarget (shuffle (*this->target_, target_order));
+  shuffled.setOdometry (this->pair_.odometry);
+  pcl::Correspondences ordered_correspondences, shuffled_correspondences;
+  this->matcher_.determineCorrespondences (ordered_correspondences);
+  shuffled.determineCorrespondences (shuffled_correspondences);
+  std::vector<int> ordered_match (this->source_->size (), pcl_crf::kNoMatch);
+  for (const pcl::Correspondence& c : ordered_correspondences)
+    ordered_match[c.index_query] = c.index_match;
+  ASSERT_EQ (shuffled_correspondences.size (), ordered_correspondences.size ());
+  for (const pcl::Correspondence& c : shuffled_correspondences)
+    EXPECT_EQ (target_order[c.index_match], ordered_match[source_order[c.index_query]]);
+  // The room goes all round the sensor: its chain starts elsewhere (after the widest gap
+  // between bearings), the same points in the same cyclic order.
+  EXPECT_TRUE (shuffled.getTransformation ().isApprox (this->matcher_.getTransformation (), 1e-5));
+  const std::vector<int>& chain = shuffled.getMatchResultSourceIndices ();
+  const std::vector<int>& ordered_chain = this->matcher_.getMatchResultSourceIndices ();
+  ASSERT_EQ (chain.size (), ordered_chain.size ());
+  const std::size_t start = std::find (ordered_chain.begin (), ordered_chain.end (), source_order[chain[0]]) - ordered_chain.begin ();
+  for (std::size_t k = 0; k < chain.size (); ++k)
+    EXPECT_EQ (source_order[chain[k]], ordered_chain[(start + k) % chain.size ()]) << k;
 }
 
 TYPED_TEST (CrfMatcherTest, MaxDistanceIsRespected)

@@ -23,6 +23,8 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <random>
 #include <sstream>
 
 namespace {
@@ -914,6 +916,65 @@ TEST (JointCRFEstimator, AlignsLikeAPclRegistration)
   for (const pcl::Correspondence& c : estimator.getCorrespondences ())
     EXPECT_NE (c.index_query, 5);
   EXPECT_GT (estimator.getCorrespondences ().size (), source->size () / 2);
+}
+
+/** \a cloud's points in the order \a order (point k of the result is point order[k]). */
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+reorderedCloud (const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<int>& order)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr out (new pcl::PointCloud<pcl::PointXYZ>);
+  for (const int i : order)
+    out->push_back (cloud[static_cast<std::size_t> (i)]);
+  return out;
+}
+
+TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
+{
+  // A cloud out of beam order (a kd-tree's or a voxel grid's, here a shuffle) is chained
+  // in beam order: the result is the ordered clouds', reported with the shuffled clouds'
+  // indices.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  const auto source = toCloud (pair.source), target = toCloud (pair.target);
+  std::vector<int> source_order (source->size ()), target_order (target->size ());
+  std::iota (source_order.begin (), source_order.end (), 0);
+  std::iota (target_order.begin (), target_order.end (), 0);
+  std::mt19937 rng (16);
+  std::shuffle (source_order.begin (), source_order.end (), rng);
+  std::shuffle (target_order.begin (), target_order.end (), rng);
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> ordered, shuffled;
+  for (auto* estimator : {&ordered, &shuffled}) {
+    estimator->setModel (shippedModel ());
+    estimator->setOdometry (odometry, pair.odometry.covariance);
+  }
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  ordered.setInputSource (source);
+  ordered.setInputTarget (target);
+  ordered.align (aligned);
+  shuffled.setInputSource (reorderedCloud (*source, source_order));
+  shuffled.setInputTarget (reorderedCloud (*target, target_order));
+  shuffled.align (aligned);
+  ASSERT_TRUE (ordered.hasConverged ());
+  ASSERT_TRUE (shuffled.hasConverged ());
+  EXPECT_EQ (shuffled.getFinalTransformation (), ordered.getFinalTransformation ());
+  ASSERT_EQ (shuffled.getCorrespondences ().size (), ordered.getCorrespondences ().size ());
+  std::map<int, int> ordered_match;
+  for (const pcl::Correspondence& c : ordered.getCorrespondences ())
+    ordered_match[c.index_query] = c.index_match;
+  for (const pcl::Correspondence& c : shuffled.getCorrespondences ())
+    EXPECT_EQ (target_order[c.index_match], ordered_match.at (source_order[c.index_query]));
+  ASSERT_EQ (shuffled.getClusters ().size (), ordered.getClusters ().size ());
+  for (std::size_t l = 0; l < ordered.getClusters ().size (); ++l) {
+    std::vector<int> mapped;
+    for (const int i : shuffled.getClusters ()[l].indices)
+      mapped.push_back (source_order[static_cast<std::size_t> (i)]);
+    std::sort (mapped.begin (), mapped.end ());
+    EXPECT_EQ (mapped, ordered.getClusters ()[l].indices) << "cluster " << l;
+  }
+  // getResult () is in beam order, its points named by getResultSourceIndices ().
+  EXPECT_EQ (shuffled.getResult ().source_cluster, ordered.getResult ().source_cluster);
+  for (std::size_t k = 0; k < shuffled.getResultSourceIndices ().size (); ++k)
+    EXPECT_EQ (source_order[shuffled.getResultSourceIndices ()[k]], ordered.getResultSourceIndices ()[k]);
 }
 
 /** Aligns \a pair's scans at float precision with \a estimator (the shipped model, the

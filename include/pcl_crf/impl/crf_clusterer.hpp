@@ -83,17 +83,11 @@ pcl_crf::CRFClusterer<PointT>::prepare (Eigen::Matrix2Xd& source, Eigen::Matrix2
     PCL_ERROR ("[pcl_crf::%s::extract] %s\n", getClassName ().c_str (), problem.c_str ());
     return false;
   }
-  // Source: the finite points of indices_, in cloud (beam) order; target: every point.
+  // Source: the finite points of indices_, in beam order; target: every point.
+  source = scanToMatrix2X (*input_, *indices_, source_index_);
   std::vector<int> column (input_->size (), -1);
-  source.resize (2, static_cast<Eigen::Index> (indices_->size ()));
-  Eigen::Index n = 0;
-  for (const auto i : *indices_)
-    if (std::isfinite ((*input_)[i].x) && std::isfinite ((*input_)[i].y))
-    {
-      source.col (n) << (*input_)[i].x, (*input_)[i].y;
-      column[i] = static_cast<int> (n++);
-    }
-  source.conservativeResize (2, n);
+  for (std::size_t k = 0; k < source_index_.size (); ++k)
+    column[source_index_[k]] = static_cast<int> (k);
   target.resize (2, static_cast<Eigen::Index> (target_->size ()));
   for (std::size_t j = 0; j < target_->size (); ++j)
     target.col (j) << (*target_)[j].x, (*target_)[j].y;
@@ -181,11 +175,7 @@ template <typename PointT> void
 pcl_crf::CRFClusterer<PointT>::storeResults (const clustering::ScanClustering& result,
                                              std::vector<pcl::PointIndices>& clusters)
 {
-  // Scan column k is the k-th finite point of indices_.
-  std::vector<int> cloud_index;
-  for (const auto i : *indices_)
-    if (std::isfinite ((*input_)[i].x) && std::isfinite ((*input_)[i].y))
-      cloud_index.push_back (static_cast<int> (i));
+  const std::vector<int>& cloud_index = source_index_;  // of every scan column (prepare ())
   clusters.resize (result.motions.size ());
   for (std::size_t k = 0; k < result.source_cluster.size (); ++k)
     if (result.source_cluster[k] >= 0)

@@ -122,15 +122,15 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
     PCL_ERROR ("[pcl_crf::%s::%s] %s.\n", getClassName ().c_str (), method, problem.c_str ());
     return false;
   }
-  // The valid source points in beam order (the indices, or the whole cloud).
-  source_xy_ = toMatrix2X (*input_, *indices_, &source_index_);
+  // The valid source points (the indices, or the whole cloud) in beam order.
+  source_xy_ = scanToMatrix2X (*input_, *indices_, source_index_);
   if (source_index_.empty ()) {
     PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point.\n", getClassName ().c_str (), method);
     return false;
   }
   if (prepare_target) {
     target_prepared_.reset ();
-    const Eigen::Matrix2Xd target_xy = toMatrix2X (*target_, &target_index_);
+    const Eigen::Matrix2Xd target_xy = scanToMatrix2X (*target_, target_index_);
     if (target_xy.cols () == 0) {
       PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point.\n", getClassName ().c_str (), method);
       return false;

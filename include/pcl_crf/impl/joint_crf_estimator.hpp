@@ -44,6 +44,8 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::clearResults ()
 {
   result_ = joint::JointResult ();
+  result_source_index_.clear ();
+  result_target_index_.clear ();
   correspondences_.clear ();
   clusters_.clear ();
   cluster_transformations_.clear ();
@@ -53,10 +55,10 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::clearResults ()
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::Matrix2Xd& source,
-                                                                  const Eigen::Matrix2Xd& target,
-                                                                  const std::vector<int>& source_index,
-                                                                  const std::vector<int>& target_index)
+                                                                  const Eigen::Matrix2Xd& target)
 {
+  const std::vector<int>& source_index = result_source_index_;
+  const std::vector<int>& target_index = result_target_index_;
   const Rigid2d& T_static = result_.cluster_motions[result_.static_cluster];
   clusters_.resize (result_.cluster_motions.size ());
   for (std::size_t i = 0; i < result_.source_cluster.size (); ++i) {
@@ -115,9 +117,8 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
 {
   clearResults ();
   converged_ = false;
-  std::vector<int> source_index, target_index;
-  const Eigen::Matrix2Xd source = toMatrix2X (*input_, *indices_, &source_index);  // the indexed points
-  const Eigen::Matrix2Xd target = toMatrix2X (*target_, &target_index);
+  const Eigen::Matrix2Xd source = scanToMatrix2X (*input_, *indices_, result_source_index_);  // the indexed points
+  const Eigen::Matrix2Xd target = scanToMatrix2X (*target_, result_target_index_);
   Odometry odometry = odometry_;
   if (!has_odometry_) {
     odometry.T_source_target = toRigid2dWarning (guess, reg_name_ + "::align").inverse ();
@@ -128,12 +129,13 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   }
   catch (const std::exception& error) {
     PCL_ERROR ("[pcl_crf::%s::computeTransformation] %s\n", reg_name_.c_str (), error.what ());
+    clearResults ();
     moveSource (guess, output);
     final_transformation_ = transformation_ = guess;
     return;
   }
   if (result_.static_cluster >= 0)
-    storeResults (source, target, source_index, target_index);
+    storeResults (source, target);
   final_transformation_ = transformation_ = toMatrix4<Scalar> (result_.T_source_target.inverse ());
   moveSource (final_transformation_, output);
   // Fewer than three target points associated with the static world do not over-determine
