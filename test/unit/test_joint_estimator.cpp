@@ -26,6 +26,8 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <thread>
+#include <utility>
 
 namespace {
 
@@ -975,6 +977,40 @@ TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
   EXPECT_EQ (shuffled.getResult ().source_cluster, ordered.getResult ().source_cluster);
   for (std::size_t k = 0; k < shuffled.getResultSourceIndices ().size (); ++k)
     EXPECT_EQ (source_order[shuffled.getResultSourceIndices ()[k]], ordered.getResultSourceIndices ()[k]);
+}
+
+TEST (JointCRFEstimator, EstimatorsInThreadsOfTheirOwnGiveTheAnswersOfOneThread)
+{
+  // A program may run an estimator per sensor or per robot in threads of their own: no
+  // estimator shares mutable state with another (the one per-thread workspace is
+  // thread_local). Three threads, each its own estimator, over the test split's pairs.
+  const std::vector<ScanPair> pairs = loadDataset (kTestDir);
+  const auto estimate = [&pairs] (std::size_t k, pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>& estimator) {
+    const ScanPair& pair = pairs[k % pairs.size ()];
+    estimator.setInputSource (toCloud (pair.source));
+    estimator.setInputTarget (toCloud (pair.target));
+    estimator.setOdometry (toMatrix4<float> (pair.odometry.T_source_target), pair.odometry.covariance);
+    pcl::PointCloud<pcl::PointXYZ> aligned;
+    estimator.align (aligned);
+    return std::make_pair (estimator.getFinalTransformation (), estimator.getResult ().source_cluster);
+  };
+  std::vector<std::pair<Eigen::Matrix4f, std::vector<int>>> expected;
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> alone;
+  alone.setModel (shippedModel ());
+  for (std::size_t k = 0; k < pairs.size (); ++k)
+    expected.push_back (estimate (k, alone));
+  std::vector<int> mismatches (3, 0);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < mismatches.size (); ++t)
+    threads.emplace_back ([&, t] {
+      pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+      estimator.setModel (shippedModel ());
+      for (std::size_t k = 7 * t; k < 7 * t + pairs.size (); ++k)
+        mismatches[t] += estimate (k, estimator) == expected[k % pairs.size ()] ? 0 : 1;
+    });
+  for (std::thread& thread : threads)
+    thread.join ();
+  EXPECT_EQ (mismatches, std::vector<int> (3, 0));
 }
 
 /** Aligns \a pair's scans at float precision with \a estimator (the shipped model, the
