@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -37,6 +38,9 @@ copyPositions (const pcl::PointCloud<PointT>& cloud, const std::string& path, Ei
     if (!std::isfinite (p.x) || !std::isfinite (p.y))
       throw DatasetError (path + ": point " + std::to_string (i) + " has a NaN or infinite coordinate");
     xy.col (i) << p.x, p.y;
+    if (p.label > static_cast<std::uint32_t> (std::numeric_limits<int>::max ()))
+      throw DatasetError (path + ": point " + std::to_string (i) + " has label " + std::to_string (p.label) +
+                          ", beyond the largest object id " + std::to_string (std::numeric_limits<int>::max ()));
     labels[i] = static_cast<int> (p.label);
   }
 }

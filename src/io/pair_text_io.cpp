@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <locale>
 #include <optional>
 #include <set>
@@ -46,8 +47,9 @@ struct LineReader
   integer (std::istringstream& in, const char* what) const
   {
     const double value = number (in, what);
-    if (value != std::floor (value) || std::abs (value) > 1e9)
-      fail (std::string (what) + " must be an integer");
+    constexpr double kLowest = std::numeric_limits<int>::lowest (), kMost = std::numeric_limits<int>::max ();
+    if (value != std::floor (value) || value < kLowest || value > kMost)
+      fail (std::string (what) + " must be a whole number in [-2147483648, 2147483647], not " + formatGeneral (value, 17));
     return static_cast<int> (value);
   }
 

@@ -476,6 +476,23 @@ TEST_F (DatasetIo, NumbersInPairTextAreFiniteDecimals)
   EXPECT_NEAR (pcl_crf::loadScanPair (pair_dir).odometry.T_source_target.translation ().x (), 0.1, 1e-15);
 }
 
+TEST_F (DatasetIo, ObjectIdsUpToTheLargestIntAreRead)
+{
+  // A converter may number objects by large track ids: up to 2147483647 they are read
+  // (a label above it used to wrap to a negative id; 1e9 used to be the bound).
+  ScanPair pair = makeSmallPair ();
+  pair.objects[1].id = 2147483647;
+  for (std::vector<int>* labels : {&pair.source_object, &pair.target_object})
+    std::replace (labels->begin (), labels->end (), 3, 2147483647);
+  pcl_crf::saveScanPair (pair, (dir_ / "large").string ());
+  EXPECT_EQ (pcl_crf::loadScanPair ((dir_ / "large").string ()).target_object.back (), 2147483647);
+  const std::string pair_dir = writeSmallPair ();
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "3.0999999 -0.5 0 3", "3.0999999 -0.5 0 3000000000");
+  expectLoadError (pair_dir, "target.pcd: point 2 has label 3000000000, beyond the largest object id 2147483647");
+  replaceInFile (fs::path (pair_dir) / "pair.txt", "object 3 moving", "object 3000000000 moving");
+  expectLoadError (pair_dir, "pair.txt:6: object id must be a whole number in [-2147483648, 2147483647], not 3000000000");
+}
+
 TEST_F (DatasetIo, ScanIntervalIsOptionalAndPositive)
 {
   ScanPair pair = makeSmallPair ();  // interval unknown: no line
