@@ -266,6 +266,11 @@ run (const RunArguments& args)
     print_info (" ms (reference poses: %s, odometry: %s)\n", log.has_reference_poses ? "yes" : "no",
                 log.has_odometry ? "yes" : "no");
   }
+  const std::size_t unordered = pcl_crf::countStampsNotAfterTheLast (log);
+  if (unordered > 0)
+    print_warn ("%zu of the %zu scans are stamped at or before the scan before them: the pairs they end have no "
+                "known time interval, so the search for moving objects is not bounded by it.\n",
+                unordered, log.scans.size ());
   if (args.stationary && log.has_reference_poses)
     throw std::invalid_argument ("--stationary makes the identity every pair's reference ego motion, but " + args.log +
                                  " has reference poses: give one or the other");

@@ -39,4 +39,13 @@ PoseTrack::interpolate (double t, Rigid2d& pose, double max_gap) const
   return true;
 }
 
+std::size_t
+countStampsNotAfterTheLast (const LaserLog& log)
+{
+  std::size_t count = 0;
+  for (std::size_t k = 1; k < log.scans.size (); ++k)
+    count += log.scans[k].stamp > log.scans[k - 1].stamp ? 0 : 1;
+  return count;
+}
+
 }  // namespace pcl_crf

@@ -4,6 +4,7 @@
 #include <pcl_crf/evaluation/prediction_io.h>
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/logs/carmen_log.h>
+#include <pcl_crf/logs/log_pairs.h>
 #include <pcl_crf/logs/rosbag_log.h>
 
 #include "app_runner.h"
@@ -130,6 +131,33 @@ TEST_F (ToolRun, StepStartMaxPairsAndSavedPairs)
   const pcl_crf::ScanPair pair = pcl_crf::loadScanPair ((pairs / "scan_000003").string ());
   EXPECT_TRUE (pair.hasTruth ());
   EXPECT_EQ (pair.sensor.beam_count, 361);
+}
+
+TEST_F (ToolRun, ScansStampedOutOfOrderAreCountedAndTheirPairsHaveNoInterval)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  // Scan 3 carries scan 2's stamp (a copied stamp), scan 5 one before scan 4's (a clock
+  // stepping back): pairs 2-3 and 4-5 have no known interval, pair 3-4 2 s, the others 1 s.
+  std::string text = roomLog (6);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{" 3.5 h 3.5\n", " 2.5 h 2.5\n"},
+                                 std::pair<std::string, std::string>{" 5.5 h 5.5\n", " 4 h 4\n"}}) {
+    ASSERT_NE (text.find (from), std::string::npos) << from;
+    text.replace (text.find (from), from.size (), to);
+  }
+  const fs::path unordered = dir_ / "unordered.log";
+  std::ofstream (unordered) << text;
+  std::ifstream in (unordered);
+  const pcl_crf::LaserLog read = pcl_crf::readCarmenLog (in, "unordered");
+  EXPECT_EQ (pcl_crf::countStampsNotAfterTheLast (read), 2u);
+  pcl_crf::LogPairOptions options;
+  const std::vector<double> intervals = {1.0, 1.0, 0.0, 2.0, 0.0};
+  for (std::size_t k = 0; k < intervals.size (); ++k)
+    EXPECT_EQ (pcl_crf::makeLogPair (read, k, options).odometry.interval, intervals[k]) << k;
+  const auto run = runTool ("pcl_crf_run", unordered.string () + " -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("2 of the 6 scans are stamped at or before the scan before them"), std::string::npos)
+      << run.output;
+  EXPECT_EQ (runTool ("pcl_crf_run", log () + " -q").output.find ("stamped at or before"), std::string::npos);
 }
 
 TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)

@@ -117,4 +117,11 @@ struct LaserLog
   bool has_odometry = false;
 };
 
+/** \brief How many scans of \a log are stamped at or before the scan before them (a
+ *  logger's clock stepping back, or one stamp copied to several scans). A pair a scan
+ *  like that ends has no known time interval (makeLogPair () leaves
+ *  Odometry::interval at 0), so the search for moving objects is not bounded by it. */
+std::size_t
+countStampsNotAfterTheLast (const LaserLog& log);
+
 }  // namespace pcl_crf
