@@ -130,20 +130,22 @@ firstRepeatedIndex (const std::vector<Index>& indices, std::size_t size)
   return -1;
 }
 
-/** \brief Why \a indices cannot name the nodes of a source cloud of \a size points, or
- *  "" when they can: an index outside the cloud (firstIndexOutside ()), or one given
- *  twice (firstRepeatedIndex (): every point is one node of the chains). */
+/** \brief Why \a indices cannot name points of the \a name cloud ("source" or
+ *  "target") of \a size points, or "" when they can: an index outside the cloud
+ *  (firstIndexOutside ()), or one given twice (firstRepeatedIndex (): a source point is
+ *  one node of the chains, a target point one candidate). */
 template <typename Index> std::string
-indicesProblem (const std::vector<Index>& indices, std::size_t size)
+indicesProblem (const std::vector<Index>& indices, std::size_t size, const std::string& name = "source")
 {
   const long outside = firstIndexOutside (indices, size);
   if (outside >= 0)
-    return "source index " + std::to_string (indices[outside]) + " (position " + std::to_string (outside) +
-           " of the indices) is not a point of the " + std::to_string (size) + "-point source cloud";
+    return name + " index " + std::to_string (indices[outside]) + " (position " + std::to_string (outside) +
+           " of the indices) is not a point of the " + std::to_string (size) + "-point " + name + " cloud";
   const long repeated = firstRepeatedIndex (indices, size);
   if (repeated >= 0)
-    return "source index " + std::to_string (indices[repeated]) + " (position " + std::to_string (repeated) +
-           " of the indices) is given twice: every point is one node of the chain";
+    return name + " index " + std::to_string (indices[repeated]) + " (position " + std::to_string (repeated) +
+           " of the indices) is given twice: every point is one " +
+           (name == "source" ? "node of the chain" : "candidate");
   return "";
 }
 

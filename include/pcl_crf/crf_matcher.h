@@ -28,7 +28,8 @@ namespace pcl_crf {
  *  Both clouds must hold one 2D scan each, x/y in metres in the sensor's frame, z
  *  ignored. The chain follows the beam order: the points' order when it is one (the
  *  order the laser measured them, either way round), else the points sorted by bearing
- *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). Points
+ *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). setIndices () and
+ *  setIndicesTarget () restrict the source points and the candidate target points. Points
  *  with a NaN x or y are skipped; every index reported refers to the input
  *  clouds. A trained model is required (setModel / loadModel; pcl_crf_train
  *  writes one, data/models/crf-matching.model is the default).
@@ -293,6 +294,7 @@ protected:
   using Base::input_;
   using Base::target_;
   using Base::target_cloud_updated_;
+  using Base::target_indices_;
 
   /** \brief Validates the input and prepares the target when it changed. */
   bool
@@ -305,6 +307,11 @@ protected:
   /** \brief Clears the results of the previous run. */
   void
   clearResults ();
+
+  /** \brief The correspondence of the \a k-th valid source point: its match, if any, within
+   *  \a max_distance under the guess; false for an outlier or a farther match. */
+  bool
+  correspondenceOf (std::size_t k, double max_distance, pcl::Correspondence& c) const;
 
 private:
   matching::CrfMatchingModel model_;

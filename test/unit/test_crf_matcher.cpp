@@ -152,6 +152,39 @@ TYPED_TEST (CrfMatcherTest, ShuffledCloudsAreMatchedInBeamOrder)
     EXPECT_EQ (source_order[chain[k]], ordered_chain[(start + k) % chain.size ()]) << k;
 }
 
+TYPED_TEST (CrfMatcherTest, TargetIndicesRestrictTheCandidates)
+{
+  // setIndicesTarget () (PCL's CorrespondenceEstimation): only those target points are
+  // candidates, named by their cloud indices; as on a cloud of just those points.
+  pcl::IndicesPtr half (new pcl::Indices);
+  typename pcl::PointCloud<TypeParam>::Ptr part (new pcl::PointCloud<TypeParam>);
+  for (std::size_t j = 0; j < this->target_->size () / 2; ++j) {
+    half->push_back (static_cast<int> (j));
+    part->push_back ((*this->target_)[j]);
+  }
+  this->matcher_.setIndicesTarget (half);
+  pcl::Correspondences restricted, on_part;
+  this->matcher_.determineCorrespondences (restricted);
+  typename TestFixture::Matcher expected;
+  expected.setModel (defaultModel ());
+  expected.setInputSource (this->source_);
+  expected.setInputTarget (part);
+  expected.setOdometry (this->pair_.odometry);
+  expected.determineCorrespondences (on_part);
+  ASSERT_GT (restricted.size (), 50u);
+  ASSERT_EQ (restricted.size (), on_part.size ());
+  for (std::size_t c = 0; c < restricted.size (); ++c) {
+    EXPECT_LT (restricted[c].index_match, static_cast<int> (half->size ()));
+    EXPECT_EQ (restricted[c].index_query, on_part[c].index_query);
+    EXPECT_EQ (restricted[c].index_match, on_part[c].index_match);  // index j of part is index j of target
+  }
+  // An index outside the target is named, and nothing is matched.
+  half->push_back (static_cast<int> (this->target_->size ()));
+  this->matcher_.setIndicesTarget (half);
+  this->matcher_.determineCorrespondences (restricted);
+  EXPECT_TRUE (restricted.empty ());
+}
+
 TYPED_TEST (CrfMatcherTest, MaxDistanceIsRespected)
 {
   pcl::Correspondences all, near;

@@ -4,6 +4,7 @@
 #include <pcl_crf/io/dataset_io.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/joint_crf_estimator.h>
+#include <pcl_crf/impl/joint_crf_estimator.hpp>  // PointNormal, not precompiled
 #include <pcl_crf/logs/log_pairs.h>
 #include <pcl_crf/logs/read_laser_log.h>
 #include <pcl_crf/logs/rosbag_log.h>
@@ -1011,6 +1012,70 @@ TEST (JointCRFEstimator, EstimatorsInThreadsOfTheirOwnGiveTheAnswersOfOneThread)
   for (std::thread& thread : threads)
     thread.join ();
   EXPECT_EQ (mismatches, std::vector<int> (3, 0));
+}
+
+TEST (JointCRFEstimator, TurnsTheNormalsOfAPointNormalCloudWithItsPoints)
+{
+  // Any point type with x and y works (through the .hpp, as PCL's PCL_NO_PRECOMPILE);
+  // the output's normals turn with its points, as pcl::IterativeClosestPoint turns them.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  pcl::PointCloud<pcl::PointNormal>::Ptr source (new pcl::PointCloud<pcl::PointNormal>);
+  pcl::PointCloud<pcl::PointNormal>::Ptr target (new pcl::PointCloud<pcl::PointNormal>);
+  for (const auto& [scan, cloud] : {std::make_pair (&pair.source, source), std::make_pair (&pair.target, target)})
+    for (Eigen::Index i = 0; i < scan->cols (); ++i) {
+      pcl::PointNormal p;
+      p.x = static_cast<float> ((*scan) (0, i));
+      p.y = static_cast<float> ((*scan) (1, i));
+      p.z = 0.0f;
+      p.normal_x = 1.0f;
+      p.normal_y = p.normal_z = 0.0f;
+      cloud->push_back (p);
+    }
+  pcl_crf::JointCRFEstimator<pcl::PointNormal, pcl::PointNormal> estimator;
+  estimator.setModel (shippedModel ());
+  estimator.setInputSource (source);
+  estimator.setInputTarget (target);
+  estimator.setOdometry (toMatrix4<float> (pair.odometry.T_source_target), pair.odometry.covariance);
+  pcl::PointCloud<pcl::PointNormal> aligned;
+  estimator.align (aligned);
+  ASSERT_TRUE (estimator.hasConverged ());
+  const Eigen::Matrix4f T = estimator.getFinalTransformation ();
+  ASSERT_EQ (aligned.size (), source->size ());
+  for (std::size_t i = 0; i < aligned.size (); i += 50) {
+    EXPECT_NEAR (aligned[i].normal_x, T (0, 0), 1e-6) << i;
+    EXPECT_NEAR (aligned[i].normal_y, T (1, 0), 1e-6) << i;
+    EXPECT_NEAR (aligned[i].x, (T * (*source)[i].getVector4fMap ()).x (), 1e-5) << i;
+  }
+  // The same estimate as through PointXYZ.
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> xyz;
+  xyz.setModel (shippedModel ());
+  pcl::PointCloud<pcl::PointXYZ> xyz_aligned;
+  xyz.setInputSource (toCloud (pair.source));
+  alignWithPairOdometry (xyz, pair, xyz_aligned);
+  EXPECT_EQ (xyz.getFinalTransformation (), T);
+}
+
+TEST (JointCRFEstimator, AnEstimateThatFailsLeavesTheOdometrysMotion)
+{
+  // A setting no estimate can run with gives a PCL_ERROR, no result, and the motion the
+  // estimator would have started from: the odometry's (it replaces align ()'s guess).
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;
+  estimator.setModel (shippedModel ());
+  estimator.setMaxMissingReturns (-5);
+  estimator.setInputSource (toCloud (pair.source));
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  const Eigen::Matrix4f odometry = alignWithPairOdometry (estimator, pair, aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  EXPECT_TRUE (estimator.getClusters ().empty ());
+  EXPECT_TRUE (estimator.getFinalTransformation ().isApprox (odometry.inverse (), 1e-6));
+  EXPECT_NEAR (aligned[0].x, (odometry.inverse () * toCloud (pair.source)->front ().getVector4fMap ()).x (), 1e-5);
+  // An odometry that is no rigid motion is refused when it is set, and the one before stays.
+  Eigen::Matrix4f broken = odometry;
+  broken (0, 3) = std::numeric_limits<float>::quiet_NaN ();
+  estimator.setOdometry (broken, pair.odometry.covariance);
+  estimator.align (aligned);
+  EXPECT_TRUE (estimator.getFinalTransformation ().isApprox (odometry.inverse (), 1e-6));
 }
 
 /** Aligns \a pair's scans at float precision with \a estimator (the shipped model, the

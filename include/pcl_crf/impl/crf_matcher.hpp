@@ -86,6 +86,8 @@ CRFMatcher<PointSource, PointTarget, Scalar>::clearResults ()
 {
   result_ = matching::MatchResult ();
   result_.T_target_source = guess_.T_target_source;
+  source_xy_.resize (2, 0);
+  source_index_.clear ();
   outliers_.clear ();
   candidates_.clear ();
   marginals_.clear ();
@@ -117,7 +119,9 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   // The target is checked when it is prepared again (a prepared one passed the check).
   const bool prepare_target = target_cloud_updated_ || !target_prepared_ ||
                               !detail::sameTargetSettings (target_prepared_parameters_, model_.parameters);
-  const std::string problem = inputProblem (indices_.get (), input_.get (), prepare_target ? target_.get () : nullptr);
+  std::string problem = inputProblem (indices_.get (), input_.get (), prepare_target ? target_.get () : nullptr);
+  if (problem.empty () && prepare_target && target_indices_)
+    problem = indicesProblem (*target_indices_, target_->size (), "target");
   if (!problem.empty ()) {
     PCL_ERROR ("[pcl_crf::%s::%s] %s.\n", getClassName ().c_str (), method, problem.c_str ());
     return false;
@@ -130,7 +134,8 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   }
   if (prepare_target) {
     target_prepared_.reset ();
-    const Eigen::Matrix2Xd target_xy = scanToMatrix2X (*target_, target_index_);
+    const Eigen::Matrix2Xd target_xy = target_indices_ ? scanToMatrix2X (*target_, *target_indices_, target_index_)
+                                                       : scanToMatrix2X (*target_, target_index_);
     if (target_xy.cols () == 0) {
       PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point.\n", getClassName ().c_str (), method);
       return false;
@@ -176,17 +181,26 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineCorrespondences (pcl::Cor
   clearResults ();
   if (!initCompute () || !computeMatches ())
     return;
-  const double max_squared = max_distance * max_distance;  // +inf for the default
-  const Eigen::Matrix2Xd& target_xy = target_prepared_->points;
   correspondences.reserve (source_index_.size ());
-  for (std::size_t k = 0; k < source_index_.size (); ++k) {
-    const int j = result_.matches[k];
-    if (j == kNoMatch)
-      continue;
-    const double squared = (guess_.T_target_source * source_xy_.col (k) - target_xy.col (j)).squaredNorm ();
-    if (squared <= max_squared)
-      correspondences.emplace_back (source_index_[k], target_index_[j], static_cast<float> (squared));
-  }
+  pcl::Correspondence c;
+  for (std::size_t k = 0; k < source_index_.size (); ++k)
+    if (correspondenceOf (k, max_distance, c))
+      correspondences.push_back (c);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar> bool
+CRFMatcher<PointSource, PointTarget, Scalar>::correspondenceOf (std::size_t k, double max_distance,
+                                                               pcl::Correspondence& c) const
+{
+  const int j = result_.matches[k];
+  if (j == kNoMatch)
+    return false;
+  const double squared =
+      (guess_.T_target_source * source_xy_.col (k) - target_prepared_->points.col (j)).squaredNorm ();
+  if (!(squared <= max_distance * max_distance))  // +inf for the default
+    return false;
+  c = pcl::Correspondence (source_index_[k], target_index_[j], static_cast<float> (squared));
+  return true;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
@@ -209,14 +223,10 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences
     PCL_ERROR ("[pcl_crf::%s::determineReciprocalCorrespondences] %s\n", getClassName ().c_str (), error.what ());
     return;
   }
-  // Valid-point position of every cloud index, to compare both directions.
-  std::vector<int> source_position (input_->size (), -1), target_position (target_->size (), -1);
+  // Both directions in the chains' positions (k source, j target), then named by the clouds' indices.
+  pcl::Correspondence c;
   for (std::size_t k = 0; k < source_index_.size (); ++k)
-    source_position[source_index_[k]] = static_cast<int> (k);
-  for (std::size_t k = 0; k < target_index_.size (); ++k)
-    target_position[target_index_[k]] = static_cast<int> (k);
-  for (const pcl::Correspondence& c : forward)
-    if (backward.matches[target_position[c.index_match]] == source_position[c.index_query])
+    if (correspondenceOf (k, max_distance, c) && backward.matches[result_.matches[k]] == static_cast<int> (k))
       correspondences.push_back (c);
 }
 

@@ -35,8 +35,16 @@ template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::setOdometry (const Matrix4& T_source_target,
                                                                  const Eigen::Matrix3d& covariance)
 {
-  odometry_.T_source_target = toRigid2dWarning (T_source_target, reg_name_ + "::setOdometry");
-  odometry_.covariance = covariance;
+  Odometry odometry;
+  odometry.T_source_target = toRigid2dWarning (T_source_target, reg_name_ + "::setOdometry");
+  odometry.covariance = covariance;
+  const std::string problem = odometryProblem (odometry);
+  if (!problem.empty ()) {
+    PCL_ERROR ("[pcl_crf::%s::setOdometry] %s; odometry unchanged\n", reg_name_.c_str (), problem.c_str ());
+    return;
+  }
+  odometry.interval = odometry_.interval;  // setScanInterval ()'s
+  odometry_ = odometry;
   has_odometry_ = true;
 }
 
@@ -82,7 +90,14 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::
 template <typename PointSource, typename PointTarget, typename Scalar> void
 JointCRFEstimator<PointSource, PointTarget, Scalar>::moveSource (const Matrix4& T, PointCloudSource& output) const
 {
-  if (fake_indices_)  // every point: keeps an organised cloud's width and height
+  // Normals turn with the points, as pcl::IterativeClosestPoint turns them.
+  if constexpr (pcl::traits::has_normal_v<PointSource>) {
+    if (fake_indices_)  // every point: keeps an organised cloud's width and height
+      pcl::transformPointCloudWithNormals (*input_, output, T);
+    else
+      pcl::transformPointCloudWithNormals (*input_, *indices_, output, T);
+  }
+  else if (fake_indices_)
     pcl::transformPointCloud (*input_, output, T);
   else
     pcl::transformPointCloud (*input_, *indices_, output, T);
@@ -130,8 +145,10 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
   catch (const std::exception& error) {
     PCL_ERROR ("[pcl_crf::%s::computeTransformation] %s\n", reg_name_.c_str (), error.what ());
     clearResults ();
-    moveSource (guess, output);
-    final_transformation_ = transformation_ = guess;
+    // No estimate: the motion it would have started from, the odometry's when it was given.
+    final_transformation_ = transformation_ =
+        has_odometry_ ? toMatrix4<Scalar> (odometry.T_source_target.inverse ()) : guess;
+    moveSource (final_transformation_, output);
     return;
   }
   if (result_.static_cluster >= 0)
