@@ -82,7 +82,7 @@ printHelp (const char* program)
   line ("--dropout P", "probability a beam returns nothing, in [0, 1) (default " + fmt (d.laser.dropout_probability) + ")");
   line ("--speed M/S", "ego speed in m/s, >= 0 (default " + fmt (d.ego_speed) + ")");
   line ("--yaw-rate RAD/S", "ego yaw rate in rad/s (default " + fmt (d.ego_yaw_rate) + ")");
-  line ("--moving N", "moving objects per pair, N >= 0; -1 = random 1..4 (default -1)");
+  line ("--moving N", "moving objects per pair, 0 <= N <= 100; -1 = random 1..4 (default -1)");
   line ("--object-speed M/S", "speed of every moving object in m/s, in [" + fmt (sim::kMinSimulatedObjectSpeed) + ", " +
                                   fmt (sim::kMaxSimulatedObjectSpeed) + "]; -1 = drawn per kind (default -1)");
   line ("--scene TYPE", "mixed|outline|crossing|overtaking|opposite|pedestrians|static (default mixed)");
@@ -150,9 +150,13 @@ value (int argc, char** argv, const std::string& option, std::string& text)
 Options
 parseOptions (int argc, char** argv)
 {
-  // Every argument must be a known option (or the value of one).
+  // Every argument must be a known option (or the value of one), each given once
+  // (parse_argument would read the first of two).
+  std::set<std::string> given;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (!given.insert (arg).second)  // every argument here is an option: values are skipped below
+      throw UsageError ("option " + arg + " is given twice");
     if (std::find (kValueOptions.begin (), kValueOptions.end (), arg) != kValueOptions.end ()) {
       if (i + 1 >= argc)
         throw UsageError (arg + " needs a value");

@@ -115,6 +115,9 @@ TEST (SimulatorTool, RejectsBadOptions)
     EXPECT_NE (output.find ("pcl_crf_simulate"), std::string::npos) << bad << ": " << output;
   }
   std::string output;
+  // An option given twice (parse_argument read the first: "--pairs 2 --pairs 3" wrote 2).
+  EXPECT_NE (run (base + "--pairs 2 --seed 2 --pairs 3", &output), 0);
+  EXPECT_NE (output.find ("option --pairs is given twice"), std::string::npos) << output;
   EXPECT_NE (run (quote (program) + " --pairs 2", &output), 0);  // no -o
   EXPECT_NE (output.find ("-o DIR"), std::string::npos);
   EXPECT_FALSE (fs::exists (dir / "out"));
