@@ -112,6 +112,12 @@ chosenMethods (int& argc, char** argv)
 int
 main (int argc, char** argv)
 {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp (argv[i], "--help") == 0)  // before Google Benchmark's own options
+      std::printf ("pcl_crf_bench_estimators [--methods=NAME,NAME,...] [Google Benchmark options]\n"
+                   "  --methods=...  the methods of pcl_crf_eval to time (default: all of them); PCL ICP is\n"
+                   "                 always timed as well, and the table after the run gives each method's\n"
+                   "                 median ms per pair and its speed-up over ICP\n\n");
   const std::vector<std::string> method_names = chosenMethods (argc, argv);
   const std::vector<Scenario> scenarios = makeScenarios ();
   std::map<std::string, std::shared_ptr<pcl_crf::EvaluationMethod>> methods;
