@@ -72,6 +72,10 @@ public:
   void
   setOdometry (const Matrix4& T_source_target, const Eigen::Matrix3d& covariance);
 
+  /** \brief Forgets setOdometry (): align ()'s guess is used again (the scan interval stays). */
+  void
+  clearOdometry () { has_odometry_ = false; }
+
   /** \brief Time from the source scan to the target scan [s] (0: unknown, the default),
    *  with or without odometry: no object is searched for farther than the model's top
    *  speed (SegmentMotionParameters::max_speed, 30 m/s) travels in that time. */

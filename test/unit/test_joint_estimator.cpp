@@ -1076,6 +1076,11 @@ TEST (JointCRFEstimator, AnEstimateThatFailsLeavesTheOdometrysMotion)
   estimator.setOdometry (broken, pair.odometry.covariance);
   estimator.align (aligned);
   EXPECT_TRUE (estimator.getFinalTransformation ().isApprox (odometry.inverse (), 1e-6));
+  // Forgotten, align ()'s guess takes its place.
+  estimator.clearOdometry ();
+  const Eigen::Matrix4f guess = toMatrix4<float> (makeRigid2d (-1.0, 0.5, 0.1));
+  estimator.align (aligned, guess);
+  EXPECT_TRUE (estimator.getFinalTransformation ().isApprox (guess, 1e-6));
 }
 
 /** Aligns \a pair's scans at float precision with \a estimator (the shipped model, the
