@@ -54,9 +54,17 @@ namespace pcl_crf {
  *  const Eigen::Matrix4f T_target_source = matcher.getTransformation ();
  *  const pcl::Indices& outliers = matcher.getOutliers ();
  *
- *  // or inside ICP (the guess stays the identity there):
+ *  // or inside ICP (#include <pcl/registration/icp.h>), which moves the source by its
+ *  // own estimate: a matcher of its own, its guess left at the identity (a clone of the
+ *  // one above would apply the odometry a second time)
+ *  pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ>::Ptr inner (new pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ>);
+ *  inner->loadModel ("data/models/crf-matching.model");
  *  pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
- *  icp.setCorrespondenceEstimation (matcher.clone ());
+ *  icp.setCorrespondenceEstimation (inner);
+ *  icp.setInputSource (source);
+ *  icp.setInputTarget (target);
+ *  pcl::PointCloud<pcl::PointXYZ> aligned;
+ *  icp.align (aligned, T_target_source);     // ICP's start: the motion found above
  *  \endcode
  */
 template <typename PointSource, typename PointTarget, typename Scalar = float>

@@ -33,7 +33,7 @@ struct PriorSelection
  *  k mod \a folds); the best (ties: the smaller σ) is then used on all pairs.
  *
  *  \code
- *  const auto selection = pcl_crf::clustering::learnWithCrossValidation (pcl_crf::loadDataset ("train"), {});
+ *  const auto selection = pcl_crf::clustering::learnWithCrossValidation (pcl_crf::loadDataset ("data/default/train"), {});
  *  \endcode
  *  \param[in] training labelled pairs (their true associations and objects are used)
  *  \param[in] parameters inference settings used to score the held-out pairs

@@ -26,7 +26,8 @@ toRigid2d (const Eigen::Matrix<Scalar, 4, 4>& M)
  *  the origin). The adapters warn with this text and go on with the planar part.
  *  \code
  *  const std::string lost = pcl_crf::nonPlanarPart (guess);
- *  if (!lost.empty ()) PCL_WARN ("the guess %s: only its planar part is used\n", lost.c_str ());
+ *  if (!lost.empty ())  // PCL_WARN: #include <pcl/console/print.h>
+ *    PCL_WARN ("the guess %s: only its planar part is used\n", lost.c_str ());
  *  \endcode */
 template <typename Scalar> std::string
 nonPlanarPart (const Eigen::Matrix<Scalar, 4, 4>& M, double tolerance = 1e-3)

@@ -20,7 +20,7 @@ namespace crf {
  *  pcl_crf::crf::AdaBoostStumps booster;
  *  booster.train (X, y, 50);                          // X: n x d, y: 0/1
  *  const double p = booster.probability (X.row (0).transpose ());
- *  std::ofstream file ("booster.txt");
+ *  std::ofstream file ("booster.txt");               // #include <fstream>
  *  booster.write (file);
  *  \endcode
  */

@@ -66,7 +66,7 @@ struct ChainPotentials
  *  chain.addNode (3);                   // adds the 2 x 3 edge 0
  *  chain.unary (0) << 0.0, 1.0;
  *  chain.unary (1) << 0.5, 0.0, -1.0;
- *  chain.pairwise (0) (1, 2) = pcl_crf::crf::kLogZero;   // a forbidden transition
+ *  chain.pairwise (0) (1, 2) = pcl_crf::crf::kLogZero;   // a forbidden transition (crf/log_space.h)
  *  chain.clear ();                      // ready for the next chain, capacity kept
  *  \endcode
  */

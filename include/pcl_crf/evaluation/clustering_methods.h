@@ -63,6 +63,7 @@ makeKMeansMethod (int cluster_count = 0);
  *  a learned k still comes from the training pairs' true objects).
  *
  *  \code
+ *  // runIcpBaseline: #include <pcl_crf/baselines/icp_baseline.h>
  *  auto icp_kmeans = pcl_crf::makeKMeansMethod ("icp+kmeans", [] (const pcl_crf::ScanPair& pair) {
  *    return pcl_crf::runIcpBaseline (pair).source_match;
  *  }, true);

@@ -36,7 +36,7 @@ struct CandidateParameters
  *  segment motion hypothesis, without duplicates.
  *
  *  \code
- *  const pcl_crf::matching::PassGeometry pass = pcl_crf::matching::preparePass (source, target, guess, guess, {});
+ *  const pcl_crf::matching::PassGeometry pass = pcl_crf::matching::preparePass (source, target, T_guess, T_guess, {});
  *  for (int c = 0; c < pass.candidates.count (i); ++c)
  *    use (pass.candidates.target (i, c));           // target index of candidate c of source point i
  *  const double recall = pcl_crf::matching::candidateRecall (pass.candidates, pair.source_match);

@@ -13,6 +13,7 @@ namespace matching {
  *  (updateShapeNeighbours) instead of searching the index again.
  *
  *  \code
+ *  using namespace pcl_crf::matching;
  *  const ShapeNeighbours first = searchShapeNeighbours (embedding_pass_1, target.index.shapes, 2);
  *  const ShapeNeighbours second = updateShapeNeighbours (first, embedding_pass_2, target.index.shapes, 2);
  *  \endcode
