@@ -29,6 +29,25 @@ formatted (double value, std::chars_format format, int precision)
 namespace
 {
 
+/** A decimal number std::from_chars found out of \a Real's range: the nearest \a Real (0
+ *  or a subnormal, signed) when it is too small in magnitude (as strtod rounds it),
+ *  nothing when it is too large. Told by a long double, whose range is wider, and
+ *  beyond that by the sign of the exponent. */
+template <typename Real>
+std::optional<Real>
+underflowed (std::string_view text)
+{
+  long double wide = 0;
+  const char* end = text.data () + text.size ();
+  const std::from_chars_result result = std::from_chars (text.data (), end, wide, std::chars_format::general);
+  if (result.ec == std::errc () && result.ptr == end)
+    return std::abs (wide) < 1 ? std::optional<Real> (static_cast<Real> (wide)) : std::nullopt;
+  const std::size_t exponent = text.find_first_of ("eE");
+  if (exponent == std::string_view::npos || exponent + 1 >= text.size () || text[exponent + 1] != '-')
+    return std::nullopt;
+  return text.front () == '-' ? -Real (0) : Real (0);
+}
+
 /** parseDecimal () into \a Real, rounded once (a float read through a double may round twice). */
 template <typename Real>
 std::optional<Real>
@@ -42,6 +61,8 @@ parseDecimalAs (std::string_view text)
   Real value = 0;
   const char* end = text.data () + text.size ();
   const std::from_chars_result result = std::from_chars (text.data (), end, value, std::chars_format::general);
+  if (!text.empty () && result.ec == std::errc::result_out_of_range && result.ptr == end)
+    return underflowed<Real> (text);
   if (text.empty () || result.ec != std::errc () || result.ptr != end || !std::isfinite (value))
     return std::nullopt;
   return value;

@@ -47,7 +47,7 @@ isReadable (const pcl::PCLPointField& field)
 using PcdHeaderLines = std::map<std::string, std::vector<std::string>>;
 
 /** \brief The lines of the PCD header of \a path, read once: every keyword's first line
- *  before DATA (or before a blank line). */
+ *  up to DATA (or up to a blank line). */
 PcdHeaderLines
 headerLines (const std::string& path)
 {
@@ -56,13 +56,15 @@ headerLines (const std::string& path)
   std::string line, word;
   while (std::getline (in, line)) {
     std::istringstream words (line);
-    if (!(words >> word) || word == "DATA")
+    if (!(words >> word))
       break;
     const std::string keyword = word;
     std::vector<std::string> rest;
     while (words >> word)
       rest.push_back (word);
     lines.emplace (keyword, std::move (rest));
+    if (keyword == "DATA")
+      break;
   }
   return lines;
 }
@@ -256,6 +258,88 @@ checkDeclaredPointCount (const std::string& path)
   }
 }
 
+/** \brief The most values of one field a point may hold (COUNT), and the most bytes a
+ *  point may take: far above any scan's fields, far below what would make PCL's reader
+ *  allocate gigabytes from a header of a few bytes. */
+constexpr double kMaxPcdCount = 1e4;
+constexpr double kMaxPcdPointBytes = 1e5;
+
+/** \brief \a word as a count of at most \a most: decimal digits only, as PCL's reader
+ *  reads it into an integer ("1e7" or "10…0e-1989" would be read as the digits before the
+ *  e, overflowing), or nothing. */
+std::optional<double>
+headerCount (const std::string& word, double most)
+{
+  constexpr std::size_t kMostDigits = 10;
+  if (word.empty () || word.size () > kMostDigits ||
+      !std::all_of (word.begin (), word.end (), [] (char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  const std::optional<double> value = parseDecimal (word);
+  if (!value || *value > most)
+    return std::nullopt;
+  return value;
+}
+
+/** \brief \a word for a message: its first 40 characters, "..." after them. */
+std::string
+shortWord (const std::string& word)
+{
+  constexpr std::size_t kShown = 40;
+  return word.size () <= kShown ? word : word.substr (0, kShown) + "...";
+}
+
+/** \brief Checks the header of \a path before PCL's reader sees it: PCL's readHeader ()
+ *  reads negative or huge WIDTH, HEIGHT, POINTS, SIZE and COUNT words into unsigned
+ *  integers and allocates from them (a segmentation fault, std::bad_alloc or 1.2 GB from
+ *  a 168-byte file), and a bare DATA line throws std::out_of_range. Every FIELDS entry
+ *  needs a SIZE, TYPE and (when there is a COUNT line) COUNT; SIZE is 1, 2, 4 or 8 and
+ *  TYPE I, U or F (F of size 4 or 8); COUNT is a whole number up to kMaxPcdCount and a
+ *  point takes at most kMaxPcdPointBytes; WIDTH, HEIGHT and POINTS are whole numbers
+ *  below 2^31; DATA is ascii, binary or binary_compressed.
+ *  \throws DatasetError naming the file, the line and the word */
+void
+checkHeader (const std::string& path)
+{
+  const PcdHeaderLines lines = headerLines (path);
+  const auto fail = [&path] (const std::string& what) { throw DatasetError (path + ": PCD header: " + what); };
+  const std::vector<std::string> names = wordsAfter (lines, "FIELDS"), sizes = wordsAfter (lines, "SIZE"),
+                                 types = wordsAfter (lines, "TYPE"), counts = wordsAfter (lines, "COUNT");
+  if (names.empty () || sizes.empty () || types.empty ())
+    throw DatasetError (path + ": not a PCD file (unreadable header, or no FIELDS/SIZE/TYPE)");
+  if (sizes.size () != names.size () || types.size () != names.size () ||
+      (lines.count ("COUNT") && counts.size () != names.size ()))
+    fail ("FIELDS names " + std::to_string (names.size ()) + " fields, SIZE gives " + std::to_string (sizes.size ()) +
+          " sizes, TYPE " + std::to_string (types.size ()) + " types" +
+          (lines.count ("COUNT") ? ", COUNT " + std::to_string (counts.size ()) + " counts" : std::string ()));
+  double point_bytes = 0.0;
+  for (std::size_t k = 0; k < names.size (); ++k) {
+    const std::optional<double> size = headerCount (sizes[k], 8);
+    const std::string& type = types[k];
+    if (!size || (*size != 1 && *size != 2 && *size != 4 && *size != 8) ||
+        (type != "I" && type != "U" && type != "F") || (type == "F" && *size != 4 && *size != 8))
+      fail ("field '" + shortWord (names[k]) + "' has SIZE " + shortWord (sizes[k]) + " and TYPE " + shortWord (type) +
+            " (SIZE 1, 2, 4 or 8 and TYPE I, U or F; F of SIZE 4 or 8)");
+    const std::optional<double> count = counts.empty () ? 1.0 : headerCount (counts[k], kMaxPcdCount);
+    if (!count)
+      fail ("field '" + shortWord (names[k]) + "' has COUNT " + shortWord (counts[k]) + " (a whole number from 0 to 10000)");
+    point_bytes += *size * *count;
+  }
+  if (point_bytes > kMaxPcdPointBytes)
+    fail ("a point takes " + formatGeneral (point_bytes, 17) + " bytes (at most 100000)");
+  constexpr double kMostPoints = 2147483647.0;
+  for (const char* keyword : {"WIDTH", "HEIGHT", "POINTS"}) {
+    const std::vector<std::string> words = wordsAfter (lines, keyword);
+    if (!lines.count (keyword) && std::string (keyword) == "POINTS")
+      continue;  // optional (PCD v0.6)
+    if (words.size () != 1 || !headerCount (words[0], kMostPoints))
+      fail (std::string (keyword) + " must be one whole number from 0 to 2147483647, not '" +
+            (words.empty () ? std::string () : shortWord (words[0])) + (words.size () > 1 ? " ..." : "") + "'");
+  }
+  const std::vector<std::string> data = wordsAfter (lines, "DATA");
+  if (data.size () != 1 || (data[0] != "ascii" && data[0] != "binary" && data[0] != "binary_compressed"))
+    fail ("the DATA line must name one of ascii, binary, binary_compressed");
+}
+
 /** \brief The two sizes a binary_compressed body starts with. */
 struct CompressedSizes
 {
@@ -331,8 +415,9 @@ splitWords (const std::string& line, std::vector<std::string_view>& words)
 template <typename T> bool
 storeWhole (double value, std::uint8_t* at)
 {
+  // max () + 1 is a power of two, exact as a double (max () itself is not, for 64 bits).
   if (value != std::floor (value) || value < static_cast<double> (std::numeric_limits<T>::lowest ()) ||
-      value > static_cast<double> (std::numeric_limits<T>::max ()))
+      !(value < static_cast<double> (std::numeric_limits<T>::max ()) + 1.0))
     return false;
   storeAs<T> (value, at);
   return true;
@@ -421,6 +506,7 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
   const std::string problem = unreadableFileProblem (path);
   if (!problem.empty ())
     throw DatasetError (path + ": " + (problem == "no such file" ? "file not found" : problem));
+  checkHeader (path);              // before PCL's readHeader () reads and allocates from it
   checkDeclaredPointCount (path);  // PCL's readHeader () allocates the declared cloud
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;

@@ -244,8 +244,13 @@ private:
     number (cursor, record, "the accuracy");
     number (cursor, record, "the remission mode");
     const int n = readingCount (cursor, record);
+    constexpr double kOneTurn = 2.0 * 3.14159265358979323846 * (1.0 + 1e-9);
     if (!(sensor.angle_increment > 0.0))
       fail ("ROBOTLASER1 record: the angular resolution must be positive");
+    if (!(sensor.angle_increment * (n - 1) <= kOneTurn) || !(std::abs (sensor.angle_min) <= kOneTurn))
+      fail ("ROBOTLASER1 record: " + std::to_string (n) + " beams " + formatGeneral (sensor.angle_increment, 6) +
+            " rad apart from the start angle " + formatGeneral (sensor.angle_min, 6) +
+            " rad: the beams must span at most one turn from a start within one turn");
     std::vector<double> ranges (n);
     for (auto& r : ranges)
       r = number (cursor, record, "a range reading");

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 namespace fs = std::filesystem;
 using pcl_crf::test::replaceInFile;
@@ -242,9 +244,42 @@ TEST_F (DatasetIo, APointCountNoFileOfItsSizeHoldsIsAnErrorBeforeAllocating)
   // PCL's readHeader () allocates the declared cloud: 4e9 points failed with a bare
   // std::bad_alloc, 4e8 took 7.8 GB before the data were found short.
   const std::string pair_dir = writeSmallPair ();
-  replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 4000000000");
-  replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 4000000000");
-  expectLoadError (pair_dir, "target.pcd: the header declares 4000000000 points, more than a file of");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "POINTS 3", "POINTS 400000000");
+  replaceInFile (fs::path (pair_dir) / "target.pcd", "WIDTH 3", "WIDTH 400000000");
+  expectLoadError (pair_dir, "target.pcd: the header declares 400000000 points, more than a file of");
+}
+
+TEST_F (DatasetIo, APcdHeaderIsCheckedBeforePclReadsIt)
+{
+  // Found by fuzzing the reader: PCL's readHeader () reads these words into unsigned
+  // integers and allocates from them, or indexes a missing DATA word.
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path target = fs::path (pair_dir) / "target.pcd";
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      // WIDTH x HEIGHT wrapped to 0 in 32 bits: a segmentation fault in pcl::fromPCLPointCloud2
+      {"WIDTH 3\nHEIGHT 1", "WIDTH -2147483648\nHEIGHT -2147483648",
+       "WIDTH must be one whole number from 0 to 2147483647, not '-2147483648'"},
+      {"POINTS 3", "POINTS -1", "POINTS must be one whole number from 0 to 2147483647, not '-1'"},  // std::length_error
+      // a negative SIZE corrupted the heap; overlapping fields read y as 0
+      {"SIZE 4 4 4 4", "SIZE 4 4 -4 4", "field 'z' has SIZE -4 and TYPE F"},
+      {"SIZE 4 4 4 4", "SIZE 4 4 4 3", "field 'label' has SIZE 3 and TYPE U"},
+      {"TYPE F F F U", "TYPE F F F X", "field 'label' has SIZE 4 and TYPE X"},
+      {"COUNT 1 1 1 1", "COUNT 1 1 -326 1", "field 'z' has COUNT -326"},  // std::bad_alloc
+      {"COUNT 1 1 1 1", "COUNT 1 1 150000000 1", "field 'z' has COUNT 150000000"},  // 1.2 GB, 6 s
+      {"COUNT 1 1 1 1", "COUNT 1 1 1", "FIELDS names 4 fields, SIZE gives 4 sizes, TYPE 4 types, COUNT 3 counts"},
+      {"DATA ascii", "DATA", "the DATA line must name one of ascii, binary, binary_compressed"},  // std::out_of_range
+  };
+  for (const auto& [from, to, message] : cases) {
+    replaceInFile (target, from, to);
+    expectLoadError (pair_dir, "target.pcd: PCD header: " + message);
+    replaceInFile (target, to, from);
+  }
+  // A label stored as uint64 beyond its range wrapped to 0.
+  replaceInFile (target, "SIZE 4 4 4 4", "SIZE 4 4 4 8");
+  replaceInFile (target, "3.0999999 -0.5 0 3", "3.0999999 -0.5 0 18446744073709551615");
+  expectLoadError (pair_dir, "target.pcd: point 2 has label '18446744073709551615', not a decimal number of its TYPE U SIZE 8");
+  replaceInFile (target, "3.0999999 -0.5 0 18446744073709551615", "3.0999999 -0.5 0 3");
+  EXPECT_EQ (pcl_crf::loadScanPair (pair_dir).target_object.back (), 3);  // the same label as uint64 reads
 }
 
 TEST_F (DatasetIo, BinaryBodiesAreReadWhenTheyHoldTheDeclaredPoints)

@@ -45,11 +45,17 @@ TEST (DecimalText, ReadsDecimalNumbers)
   EXPECT_EQ (pcl_crf::parseDecimal ("1E5"), 1e5);
   EXPECT_EQ (pcl_crf::parseDecimal ("-1.5707963267948966"), -1.5707963267948966);
   EXPECT_EQ (pcl_crf::parseDecimal ("1e-310"), 1e-310);  // subnormal, still in range
+  // Too small for a double: 0, as strtod rounds it (from_chars calls it out of range).
+  EXPECT_EQ (pcl_crf::parseDecimal ("1e-400"), 0.0);
+  EXPECT_TRUE (std::signbit (*pcl_crf::parseDecimal ("-1e-400")));
+  EXPECT_EQ (pcl_crf::parseDecimal ("1e-99999"), 0.0);
+  EXPECT_EQ (pcl_crf::parseDecimalFloat ("1e-46"), 0.0f);
+  EXPECT_EQ (pcl_crf::parseDecimalFloat ("1e-40"), 1e-40f);
 }
 
 TEST (DecimalText, RefusesWhatIsNotAFiniteDecimalNumber)
 {
-  for (const char* text : {"", "+", "-", "0x10", "0X1p3", "1,5", "nan", "-inf", "infinity", "1e999", "1e-400",
+  for (const char* text : {"", "+", "-", "0x10", "0X1p3", "1,5", "nan", "-inf", "infinity", "1e999", "-1e99999", "1e40000",
                            "1.5x", " 1", "1 ", "+-1", "++1", "--1", "e5", "1e", "five"})
     EXPECT_FALSE (pcl_crf::parseDecimal (text).has_value ()) << "'" << text << "'";
 }

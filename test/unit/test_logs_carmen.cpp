@@ -266,6 +266,11 @@ TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
   expectError (trailing, "host name and logger timestamp: '7'");
   const std::string far = write ("far.log", correctedLog (1) + "FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1\n", false);
   expectError (far, "FLASER record: the pose x y theta lies beyond 1e18 m");
+  // Beams 1e308 rad apart made NaN points (2 x 1e308 is inf).
+  const std::string wide = write ("wide.log", "ROBOTLASER1 0 -1.5707963 3.1415927 1e308 81.9 0.01 0 3 1 1 1 0 "
+                                              "0 0 0 0 0 0 0 0 0.5 0.3 0 1.0 host 1.0\n", false);
+  expectError (wide, "wide.log:1: ROBOTLASER1 record: 3 beams 1e+308 rad apart from the start angle -1.5708 rad: "
+                     "the beams must span at most one turn");
   // Without the host name and logger timestamp (some converted logs): read as before.
   EXPECT_EQ (pcl_crf::readCarmenLog (write ("short.log", correctedLog (1) + "FLASER 2 1 2 0 0 0 0 0 0 1\n", false))
                  .scans.size (),

@@ -24,7 +24,8 @@ namespace pcl_crf
 
 /** \brief Reads the whole of \a text as a finite decimal number ("0.25", "-1e-3", "+2",
  *  ".5"). Refuses hexadecimal ("0x10", which strtod reads as 16), "inf", "nan", spaces,
- *  a decimal comma, trailing characters and numbers beyond a double's range.
+ *  a decimal comma, trailing characters and numbers too large for a double; one too
+ *  small for it reads as 0 or a subnormal ("1e-400" is 0), as strtod rounds it.
  *  \return the number, or std::nullopt when \a text is not one */
 std::optional<double>
 parseDecimal (std::string_view text);
