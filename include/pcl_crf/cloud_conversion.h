@@ -66,14 +66,11 @@ namespace detail {
 /** \brief \a xy with its columns, and \a kept with them, in beam order (beamOrder ()):
  *  unchanged when they are in one. */
 inline Eigen::Matrix2Xd
-inBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
+putInBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
 {
-  const std::vector<int> order = beamOrder (xy);
-  bool reordered = false;
-  for (std::size_t k = 0; k < order.size () && !reordered; ++k)
-    reordered = order[k] != static_cast<int> (k);
-  if (!reordered)
+  if (inBeamOrder (xy))
     return xy;
+  const std::vector<int> order = beamOrder (xy);
   Eigen::Matrix2Xd ordered (2, xy.cols ());
   std::vector<int> ordered_kept (kept.size ());
   for (std::size_t k = 0; k < order.size (); ++k) {
@@ -93,14 +90,14 @@ inBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
 template <typename PointT> Eigen::Matrix2Xd
 scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>& kept)
 {
-  return detail::inBeamOrder (toMatrix2X (cloud, &kept), kept);
+  return detail::putInBeamOrder (toMatrix2X (cloud, &kept), kept);
 }
 
 /** \brief scanToMatrix2X () of the points of \a cloud at \a indices. */
 template <typename PointT, typename Index> Eigen::Matrix2Xd
 scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indices, std::vector<int>& kept)
 {
-  return detail::inBeamOrder (toMatrix2X (cloud, indices, &kept), kept);
+  return detail::putInBeamOrder (toMatrix2X (cloud, indices, &kept), kept);
 }
 
 /** \brief The position in \a indices of the first index outside a cloud of \a size

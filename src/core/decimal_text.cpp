@@ -24,11 +24,6 @@ formatted (double value, std::chars_format format, int precision)
   return std::string (buffer, result.ptr);
 }
 
-}  // namespace
-
-namespace
-{
-
 /** A decimal number std::from_chars found out of \a Real's range: the nearest \a Real (0
  *  or a subnormal, signed) when it is too small in magnitude (as strtod rounds it),
  *  nothing when it is too large. Told by a long double, whose range is wider, and

@@ -46,7 +46,8 @@ returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
     if (isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second)
       kept.push_back (static_cast<int> (i));
-  const std::vector<int> order = beamOrder (columns (scan, kept));
+  const bool every_point = static_cast<Eigen::Index> (kept.size ()) == scan.cols ();  // then kept is 0, 1, ...
+  const std::vector<int> order = every_point ? beamOrder (scan) : beamOrder (columns (scan, kept));
   std::vector<int> ordered (kept.size ());
   for (std::size_t k = 0; k < kept.size (); ++k)
     ordered[k] = kept[static_cast<std::size_t> (order[k])];

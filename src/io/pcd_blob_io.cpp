@@ -227,12 +227,11 @@ asciiPointCount (const std::string& path, std::size_t data_index)
   return count;
 }
 
-/** \brief The largest point count the header of \a path declares, in POINTS or as WIDTH
+/** \brief The largest point count a PCD header declares (\a lines), in POINTS or as WIDTH
  *  x HEIGHT (0 for words that are not counts: PCL's reader names those). */
 double
-declaredPointCount (const std::string& path)
+declaredPointCount (const PcdHeaderLines& lines)
 {
-  const PcdHeaderLines lines = headerLines (path);
   const auto count = [&lines] (const char* keyword) {
     const std::vector<std::string> words = wordsAfter (lines, keyword);
     const std::optional<double> value = words.size () == 1 ? parseDecimal (words[0]) : std::nullopt;
@@ -241,15 +240,15 @@ declaredPointCount (const std::string& path)
   return std::max (count ("POINTS"), count ("WIDTH") * count ("HEIGHT"));
 }
 
-/** \brief Checks, before PCL's reader allocates the cloud the header declares, that a
- *  file of its size can hold that many points (each takes a byte at the least, a
- *  binary_compressed byte unpacks to at most kLzfMostUnpackedPerByte).
+/** \brief Checks, before PCL's reader allocates the cloud the header of \a path (its
+ *  \a lines) declares, that a file of its size can hold that many points (each takes a
+ *  byte at the least, a binary_compressed byte unpacks to at most kLzfMostUnpackedPerByte).
  *  \throws DatasetError naming the file and both counts */
 void
-checkDeclaredPointCount (const std::string& path)
+checkDeclaredPointCount (const std::string& path, const PcdHeaderLines& lines)
 {
   const double file_size = static_cast<double> (std::filesystem::file_size (path));
-  const double declared = declaredPointCount (path);
+  const double declared = declaredPointCount (lines);
   if (declared > kLzfMostUnpackedPerByte * file_size) {
     std::ostringstream what;
     what << path << ": the header declares " << std::setprecision (15) << declared << " points, more than a file of "
@@ -295,7 +294,8 @@ shortWord (const std::string& word)
  *  needs a SIZE, TYPE and (when there is a COUNT line) COUNT; SIZE is 1, 2, 4 or 8 and
  *  TYPE I, U or F (F of size 4 or 8); COUNT is a whole number up to kMaxPcdCount and a
  *  point takes at most kMaxPcdPointBytes; WIDTH, HEIGHT and POINTS are whole numbers
- *  below 2^31; DATA is ascii, binary or binary_compressed.
+ *  below 2^31; DATA is ascii, binary or binary_compressed; the file can hold the points
+ *  declared (checkDeclaredPointCount ()).
  *  \throws DatasetError naming the file, the line and the word */
 void
 checkHeader (const std::string& path)
@@ -338,6 +338,7 @@ checkHeader (const std::string& path)
   const std::vector<std::string> data = wordsAfter (lines, "DATA");
   if (data.size () != 1 || (data[0] != "ascii" && data[0] != "binary" && data[0] != "binary_compressed"))
     fail ("the DATA line must name one of ascii, binary, binary_compressed");
+  checkDeclaredPointCount (path, lines);  // PCL's readHeader () allocates the declared cloud
 }
 
 /** \brief The two sizes a binary_compressed body starts with. */
@@ -506,8 +507,7 @@ readPcdBlob (const std::string& path, const std::vector<PcdField>& fields)
   const std::string problem = unreadableFileProblem (path);
   if (!problem.empty ())
     throw DatasetError (path + ": " + (problem == "no such file" ? "file not found" : problem));
-  checkHeader (path);              // before PCL's readHeader () reads and allocates from it
-  checkDeclaredPointCount (path);  // PCL's readHeader () allocates the declared cloud
+  checkHeader (path);  // before PCL's readHeader () reads and allocates from it
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;
   Eigen::Vector4f origin;
