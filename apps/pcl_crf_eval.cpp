@@ -54,7 +54,8 @@ printHelp (const char* program)
   print_info ("  --method NAMES        comma-separated methods (default: icp); known: %s\n", methods.c_str ());
   print_info ("  --train DIR           training dataset for learned methods (default: none)\n");
   print_info ("  --models DIR          load learned methods from DIR/<method>.model (pcl_crf_train writes them;\n"
-              "                        data/models holds the defaults trained on data/default/train)\n");
+              "                        data/models holds the defaults trained on data/default/train,\n"
+              "                        installed in <prefix>/share/pcl_crf/models)\n");
   print_info ("  --clusters K          clusters for K-Means-like baselines (default: method's own)\n");
   print_info ("  --format F            table | csv | json (default: table)\n");
   print_info ("  --output FILE         write the csv/json/table there instead of stdout\n");

@@ -57,7 +57,8 @@ printHelp (const char* program)
   print_info (" Method:\n");
   print_info ("  --method NAME          the method to run (default: icp); known: %s\n", methods.c_str ());
   print_info ("  --models DIR           load a learned method from DIR/NAME.model (default: none;\n"
-              "                         data/models holds the shipped ones)\n");
+              "                         data/models holds the shipped ones, installed in\n"
+              "                         <prefix>/share/pcl_crf/models)\n");
   print_info (" Pairs:\n");
   print_info ("  --start K              index of the first source scan (default: 0)\n");
   print_info ("  --max-pairs N          stop after N pairs (default: 0 = all); pairs are\n"
@@ -121,7 +122,7 @@ prepareMethod (const RunArguments& args)
     return method;
   if (args.model_dir.empty ())
     throw std::invalid_argument ("method '" + args.method + "' learns its weights: give --models DIR "
-                                 "(data/models holds the shipped models)");
+                                 "(data/models holds the shipped models, installed in <prefix>/share/pcl_crf/models)");
   method->loadModel ((fs::path (args.model_dir) / (args.method + ".model")).string ());
   return method;
 }

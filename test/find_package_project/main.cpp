@@ -7,6 +7,7 @@
 #include <pcl/point_types.h>
 
 #include <cmath>
+#include <string>
 #include <iostream>
 
 int
@@ -42,6 +43,24 @@ main ()
   joint.align (aligned);
   if (joint.hasConverged ()) {
     std::cout << "an untrained JointCRFEstimator must not converge" << std::endl;
+    return 1;
+  }
+  // With the installed joint model (pcl_crf_MODELS_DIR) and the true motion as the
+  // guess it finds the motion: the final transformation maps the source into the target.
+  joint.loadModel (std::string (PCL_CRF_MODELS_DIR) + "/joint.model");
+  pcl::PointCloud<pcl::PointXYZ> moved;
+  for (const auto& p : pair.target.colwise ())
+    moved.push_back (pcl::PointXYZ (static_cast<float> (p.x ()), static_cast<float> (p.y ()), 0.0f));
+  joint.setInputTarget (moved.makeShared ());
+  Eigen::Matrix4f guess = Eigen::Matrix4f::Identity ();
+  guess.topLeftCorner<2, 2> () = truth.linear ().cast<float> ();
+  guess.block<2, 1> (0, 3) = truth.translation ().cast<float> ();
+  joint.align (aligned, guess);
+  const Eigen::Matrix4f found = joint.getFinalTransformation ();
+  const double motion_error = std::hypot (found (0, 3) - 0.3, found (1, 3));
+  if (!joint.hasConverged () || !(motion_error < 0.01)) {
+    std::cout << "the installed joint model: converged " << joint.hasConverged () << ", motion error "
+              << motion_error << std::endl;
     return 1;
   }
   std::cout << "outside project OK" << std::endl;
