@@ -63,8 +63,8 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indi
 
 namespace detail {
 
-/** \brief \a xy with its columns, and \a kept with them, in beam order (beamOrder ()):
- *  unchanged when they are in one. */
+/** \brief \a xy with its columns, and \a kept with them, in beam order counter-clockwise
+ *  (beamOrder ()): unchanged when they are in one. */
 inline Eigen::Matrix2Xd
 putInBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
 {
@@ -84,8 +84,9 @@ putInBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
 }  // namespace detail
 
 /** \brief toMatrix2X () of a laser scan for the CRF chains: its columns in beam order
- *  (beamOrder (): the cloud's order when that is one; a cloud through pcl::VoxelGrid, a
- *  kd-tree or a shuffle is sorted by bearing). \a kept receives the cloud index of every
+ *  (beamOrder (): the cloud's order when that is one, counter-clockwise; backwards when
+ *  it goes clockwise; a cloud through pcl::VoxelGrid, a kd-tree or a shuffle is sorted
+ *  by bearing). \a kept receives the cloud index of every
  *  column, so that results map back to the user's points. */
 template <typename PointT> Eigen::Matrix2Xd
 scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>& kept)

@@ -26,7 +26,8 @@ namespace pcl_crf {
  *
  *  Input: the source scan (earlier) and target scan (later), each in its own sensor
  *  frame (the CRF is a chain along the source scan: in the points' order when it is a
- *  beam order, else sorted by bearing, pcl_crf::beamOrder ()), and point correspondences (index_query = source point, index_match = target point;
+ *  beam order counter-clockwise, backwards when clockwise, else sorted by bearing,
+ *  pcl_crf::beamOrder ()), and point correspondences (index_query = source point, index_match = target point;
  *  from any association method). Only x and y are used. Output, like
  *  pcl::EuclideanClusterExtraction: clusters of source point indices, largest first,
  *  plus per cluster its rigid motion T_target_source (maps source-frame points into the

@@ -26,9 +26,10 @@ namespace pcl_crf {
  *  conditional random field over the scan's chain of points.
  *
  *  Both clouds must hold one 2D scan each, x/y in metres in the sensor's frame, z
- *  ignored. The chain follows the beam order: the points' order when it is one (the
- *  order the laser measured them, either way round), else the points sorted by bearing
- *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). setIndices () and
+ *  ignored. The chain follows the beam order, counter-clockwise as the models learned:
+ *  the points' order when it is one (the order the laser measured them), backwards when
+ *  they go clockwise, else the points sorted by bearing (pcl_crf::beamOrder (): a cloud
+ *  through pcl::VoxelGrid, say). setIndices () and
  *  setIndicesTarget () restrict the source points and the candidate target points. Points
  *  with a NaN x or y are skipped; every index reported refers to the input
  *  clouds. A trained model is required (setModel / loadModel; pcl_crf_train

@@ -106,9 +106,10 @@ public:
    *  points before any estimator runs, and would read past the cloud. An index outside
    *  it gives PCL_ERROR naming it, no result and hasConverged () == false. Only the
    *  indexed points are estimated, and \a output holds them moved by the static world's
-   *  motion. The chains follow the beam order: the points' order when it is one (a
-   *  laser's, clockwise or counter-clockwise), else the points sorted by bearing
-   *  (pcl_crf::beamOrder (): a cloud through pcl::VoxelGrid, say). */
+   *  motion. The chains follow the beam order, counter-clockwise as the model learned:
+   *  the points' order when it is one (a laser's), backwards when they go clockwise,
+   *  else the points sorted by bearing (pcl_crf::beamOrder (): a cloud through
+   *  pcl::VoxelGrid, say). */
   void
   align (PointCloudSource& output, const Matrix4& guess);
 

@@ -25,11 +25,19 @@ wrapped (double angle)
   return angle <= -kPi ? angle + 2.0 * kPi : angle;
 }
 
-/** Whether every bearing step of \a points goes one way round (then bearingBacktrack ()
- *  is 0), told without an atan2: the sign of the cross product of consecutive points (a
- *  step of 0 has none, one of π is told by the atan2s). */
-bool
-turnsOneWay (const Eigen::Matrix2Xd& points)
+/** Which way round a scan's bearings go. */
+enum class Turn
+{
+  kCounterClockwise,
+  kClockwise,
+  kBothWays
+};
+
+/** Which way every bearing step of \a points goes, told without an atan2: the sign of
+ *  the cross product of consecutive points (a step of 0 has none, one of π is told by
+ *  the atan2s). kCounterClockwise also when no step has a sign. */
+Turn
+turnOfEveryStep (const Eigen::Matrix2Xd& points)
 {
   bool counter_clockwise = false, clockwise = false;
   Eigen::Vector2d previous;
@@ -41,53 +49,80 @@ turnsOneWay (const Eigen::Matrix2Xd& points)
     if (started) {
       const double cross = previous.x () * point.y () - previous.y () * point.x ();
       if (cross == 0.0 && previous.dot (point) <= 0.0)
-        return false;
+        return Turn::kBothWays;
       counter_clockwise = counter_clockwise || cross > 0.0;
       clockwise = clockwise || cross < 0.0;
     }
     previous = point;
     started = true;
   }
-  return !(counter_clockwise && clockwise);
+  if (counter_clockwise && clockwise)
+    return Turn::kBothWays;
+  return clockwise ? Turn::kClockwise : Turn::kCounterClockwise;
 }
 
-}  // namespace
-
-double
-bearingBacktrack (const Eigen::Matrix2Xd& points)
+/** The bearing steps of a scan's points (each wrapped into (−π, π]), summed by the way they turn. */
+struct BearingWay
 {
-  if (turnsOneWay (points))
-    return 0.0;
-  double counter_clockwise = 0.0, clockwise = 0.0, previous = 0.0;
-  int bearings = 0;
+  double counter_clockwise = 0.0;
+  double clockwise = 0.0;
+  int bearings = 0;  // points that have a bearing
+
+  /** The way back against the main direction, as a fraction of the main direction's way. */
+  double
+  backtrack () const
+  {
+    const double way = std::max (counter_clockwise, clockwise);
+    return bearings < 3 || way == 0.0 ? 0.0 : std::min (counter_clockwise, clockwise) / way;
+  }
+};
+
+BearingWay
+bearingWay (const Eigen::Matrix2Xd& points)
+{
+  BearingWay way;
+  double previous = 0.0;
   for (Eigen::Index k = 0; k < points.cols (); ++k) {
     if (!hasBearing (points.col (k)))
       continue;
     const double bearing = std::atan2 (points (1, k), points (0, k));
-    if (bearings++ > 0) {
+    if (way.bearings++ > 0) {
       const double step = wrapped (bearing - previous);
-      (step > 0.0 ? counter_clockwise : clockwise) += std::abs (step);
+      (step > 0.0 ? way.counter_clockwise : way.clockwise) += std::abs (step);
     }
     previous = bearing;
   }
-  const double way = std::max (counter_clockwise, clockwise);
-  return bearings < 3 || way == 0.0 ? 0.0 : std::min (counter_clockwise, clockwise) / way;
+  return way;
 }
 
-bool
-inBeamOrder (const Eigen::Matrix2Xd& points)
+/** How a scan is to be read for the chains. */
+enum class Reading
 {
-  return bearingBacktrack (points) <= kBeamOrderBacktrack;
+  kAsItIs,     // in beam order, counter-clockwise
+  kBackwards,  // in beam order, clockwise
+  kByBearing   // in no beam order
+};
+
+Reading
+readingOf (const Eigen::Matrix2Xd& points)
+{
+  const Turn turn = turnOfEveryStep (points);
+  if (turn != Turn::kBothWays)
+    return turn == Turn::kClockwise ? Reading::kBackwards : Reading::kAsItIs;
+  const BearingWay way = bearingWay (points);
+  if (way.backtrack () > kBeamOrderBacktrack)
+    return Reading::kByBearing;
+  return way.clockwise > way.counter_clockwise ? Reading::kBackwards : Reading::kAsItIs;
 }
 
+/** The indices of \a points sorted by bearing, counter-clockwise from the one after the
+ *  widest gap, the origin's points first, equal bearings in index order. */
 std::vector<int>
-beamOrder (const Eigen::Matrix2Xd& points)
+sortedByBearing (const Eigen::Matrix2Xd& points)
 {
   const auto n = static_cast<int> (points.cols ());
   std::vector<int> order (static_cast<std::size_t> (n));
   std::iota (order.begin (), order.end (), 0);
-  if (inBeamOrder (points))
-    return order;
   std::vector<double> bearing (order.size (), -2.0 * kPi);  // the origin's points first
   for (int k = 0; k < n; ++k)
     if (hasBearing (points.col (k)))
@@ -107,6 +142,35 @@ beamOrder (const Eigen::Matrix2Xd& points)
     }
   }
   std::rotate (order.begin () + static_cast<long> (first), order.begin () + static_cast<long> (start), order.end ());
+  return order;
+}
+
+}  // namespace
+
+double
+bearingBacktrack (const Eigen::Matrix2Xd& points)
+{
+  if (turnOfEveryStep (points) != Turn::kBothWays)
+    return 0.0;
+  return bearingWay (points).backtrack ();
+}
+
+bool
+inBeamOrder (const Eigen::Matrix2Xd& points)
+{
+  return readingOf (points) == Reading::kAsItIs;
+}
+
+std::vector<int>
+beamOrder (const Eigen::Matrix2Xd& points)
+{
+  const Reading reading = readingOf (points);
+  if (reading == Reading::kByBearing)
+    return sortedByBearing (points);
+  std::vector<int> order (static_cast<std::size_t> (points.cols ()));
+  std::iota (order.begin (), order.end (), 0);
+  if (reading == Reading::kBackwards)
+    std::reverse (order.begin (), order.end ());
   return order;
 }
 

@@ -35,7 +35,7 @@ columns (const Eigen::Matrix2Xd& points, const std::vector<int>& kept)
 
 /** The indices of the points of \a scan that are returns (isReturn ()), each position
  *  once (a return at the coordinates of an earlier one is left out), in beam order
- *  (beamOrder (): increasing unless the scan was in no beam order). */
+ *  (beamOrder (): increasing unless the scan was in no beam order or listed clockwise). */
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {

@@ -69,11 +69,10 @@ TEST (BeamOrder, BacktrackIsTheWayBackOverTheWayForward)
   EXPECT_EQ (pcl_crf::bearingBacktrack (atBearings ({0.0, 10.0})), 0.0);
 }
 
-TEST (BeamOrder, ALasersScanIsInBeamOrderEitherWayRoundFromAnyStart)
+TEST (BeamOrder, ALasersScanCounterClockwiseIsInBeamOrderFromAnyStart)
 {
   const std::vector<std::vector<double>> scans = {
-      beams (-90.0, 361, 0.5),    // a SICK, counter-clockwise
-      beams (90.0, 361, -0.5),    // mounted upside down: clockwise
+      beams (-90.0, 361, 0.5),    // a SICK
       beams (-135.0, 1081, 0.25), // a Hokuyo's 270°
       beams (37.0, 720, 0.5),     // all round, from 37° across ±180°
   };
@@ -83,6 +82,28 @@ TEST (BeamOrder, ALasersScanIsInBeamOrderEitherWayRoundFromAnyStart)
     EXPECT_TRUE (pcl_crf::inBeamOrder (scan));
     EXPECT_EQ (pcl_crf::beamOrder (scan), identity (degrees.size ()));
   }
+}
+
+TEST (BeamOrder, AClockwiseScanIsReadBackwards)
+{
+  // Mounted upside down, or listed the other way by a converter: the chains read it
+  // counter-clockwise, as the models learned; with a little jitter as well.
+  std::vector<double> degrees = beams (90.0, 361, -0.5);
+  const Eigen::Matrix2Xd scan = atBearings (degrees);
+  EXPECT_EQ (pcl_crf::bearingBacktrack (scan), 0.0);
+  EXPECT_FALSE (pcl_crf::inBeamOrder (scan));
+  std::vector<int> backwards = identity (degrees.size ());
+  std::reverse (backwards.begin (), backwards.end ());
+  EXPECT_EQ (pcl_crf::beamOrder (scan), backwards);
+  for (std::size_t k = 10; k + 1 < degrees.size (); k += 40)
+    std::swap (degrees[k], degrees[k + 1]);
+  const Eigen::Matrix2Xd jittered = atBearings (degrees);
+  EXPECT_GT (pcl_crf::bearingBacktrack (jittered), 0.0);
+  EXPECT_FALSE (pcl_crf::inBeamOrder (jittered));
+  EXPECT_EQ (pcl_crf::beamOrder (jittered), backwards);
+  // Fewer than two bearings turn no way: left as they are.
+  EXPECT_EQ (pcl_crf::beamOrder (atBearings ({20.0})), identity (1));
+  EXPECT_EQ (pcl_crf::beamOrder (Eigen::Matrix2Xd::Zero (2, 3)), identity (3));
 }
 
 TEST (BeamOrder, AShuffledScanIsSortedBackIntoItsBeams)

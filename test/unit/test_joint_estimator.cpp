@@ -931,22 +931,28 @@ reorderedCloud (const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<i
   return out;
 }
 
-TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
+/** Test pair 16's clouds with their points in the orders \a source_order and \a
+ *  target_order are chained in beam order, counter-clockwise: the result is the pair's
+ *  own, reported with the reordered clouds' indices. */
+void
+expectChainedInBeamOrder (bool shuffle)
 {
-  // A cloud out of beam order (a kd-tree's or a voxel grid's, here a shuffle) is chained
-  // in beam order: the result is the ordered clouds', reported with the shuffled clouds'
-  // indices.
   const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
   const auto source = toCloud (pair.source), target = toCloud (pair.target);
   std::vector<int> source_order (source->size ()), target_order (target->size ());
   std::iota (source_order.begin (), source_order.end (), 0);
   std::iota (target_order.begin (), target_order.end (), 0);
   std::mt19937 rng (16);
-  std::shuffle (source_order.begin (), source_order.end (), rng);
-  std::shuffle (target_order.begin (), target_order.end (), rng);
+  if (shuffle) {
+    std::shuffle (source_order.begin (), source_order.end (), rng);
+    std::shuffle (target_order.begin (), target_order.end (), rng);
+  } else {
+    std::reverse (source_order.begin (), source_order.end ());
+    std::reverse (target_order.begin (), target_order.end ());
+  }
   const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
-  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> ordered, shuffled;
-  for (auto* estimator : {&ordered, &shuffled}) {
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> ordered, reordered;
+  for (auto* estimator : {&ordered, &reordered}) {
     estimator->setModel (shippedModel ());
     estimator->setOdometry (odometry, pair.odometry.covariance);
   }
@@ -954,30 +960,42 @@ TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
   ordered.setInputSource (source);
   ordered.setInputTarget (target);
   ordered.align (aligned);
-  shuffled.setInputSource (reorderedCloud (*source, source_order));
-  shuffled.setInputTarget (reorderedCloud (*target, target_order));
-  shuffled.align (aligned);
+  reordered.setInputSource (reorderedCloud (*source, source_order));
+  reordered.setInputTarget (reorderedCloud (*target, target_order));
+  reordered.align (aligned);
   ASSERT_TRUE (ordered.hasConverged ());
-  ASSERT_TRUE (shuffled.hasConverged ());
-  EXPECT_EQ (shuffled.getFinalTransformation (), ordered.getFinalTransformation ());
-  ASSERT_EQ (shuffled.getCorrespondences ().size (), ordered.getCorrespondences ().size ());
+  ASSERT_TRUE (reordered.hasConverged ());
+  EXPECT_EQ (reordered.getFinalTransformation (), ordered.getFinalTransformation ());
+  ASSERT_EQ (reordered.getCorrespondences ().size (), ordered.getCorrespondences ().size ());
   std::map<int, int> ordered_match;
   for (const pcl::Correspondence& c : ordered.getCorrespondences ())
     ordered_match[c.index_query] = c.index_match;
-  for (const pcl::Correspondence& c : shuffled.getCorrespondences ())
+  for (const pcl::Correspondence& c : reordered.getCorrespondences ())
     EXPECT_EQ (target_order[c.index_match], ordered_match.at (source_order[c.index_query]));
-  ASSERT_EQ (shuffled.getClusters ().size (), ordered.getClusters ().size ());
+  ASSERT_EQ (reordered.getClusters ().size (), ordered.getClusters ().size ());
   for (std::size_t l = 0; l < ordered.getClusters ().size (); ++l) {
     std::vector<int> mapped;
-    for (const int i : shuffled.getClusters ()[l].indices)
+    for (const int i : reordered.getClusters ()[l].indices)
       mapped.push_back (source_order[static_cast<std::size_t> (i)]);
     std::sort (mapped.begin (), mapped.end ());
     EXPECT_EQ (mapped, ordered.getClusters ()[l].indices) << "cluster " << l;
   }
   // getResult () is in beam order, its points named by getResultSourceIndices ().
-  EXPECT_EQ (shuffled.getResult ().source_cluster, ordered.getResult ().source_cluster);
-  for (std::size_t k = 0; k < shuffled.getResultSourceIndices ().size (); ++k)
-    EXPECT_EQ (source_order[shuffled.getResultSourceIndices ()[k]], ordered.getResultSourceIndices ()[k]);
+  EXPECT_EQ (reordered.getResult ().source_cluster, ordered.getResult ().source_cluster);
+  for (std::size_t k = 0; k < reordered.getResultSourceIndices ().size (); ++k)
+    EXPECT_EQ (source_order[reordered.getResultSourceIndices ()[k]], ordered.getResultSourceIndices ()[k]);
+}
+
+TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
+{
+  // A cloud out of beam order: a kd-tree's or a voxel grid's, here a shuffle.
+  expectChainedInBeamOrder (true);
+}
+
+TEST (JointCRFEstimator, ChainsAClockwiseCloudCounterClockwise)
+{
+  // A laser mounted upside down lists its beams clockwise: read backwards, as the model learned.
+  expectChainedInBeamOrder (false);
 }
 
 TEST (JointCRFEstimator, EstimatorsInThreadsOfTheirOwnGiveTheAnswersOfOneThread)

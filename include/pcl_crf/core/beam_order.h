@@ -15,9 +15,9 @@ namespace pcl_crf {
 double
 bearingBacktrack (const Eigen::Matrix2Xd& points);
 
-/** \brief Whether a scan's points are in beam order, as the CRF chains need them: their
- *  bearings go round one way, clockwise or counter-clockwise, starting anywhere, and
- *  turn back by at most kBeamOrderBacktrack of their way (bearingBacktrack ()).
+/** \brief Whether a scan's points are in the order the CRF chains read: beam order,
+ *  counter-clockwise. Their bearings go round counter-clockwise, starting anywhere,
+ *  and turn back by at most kBeamOrderBacktrack of their way (bearingBacktrack ()).
  *
  *  A scan as a laser measures it turns back by nothing, or by a little where its
  *  bearings jitter or its points sit in a frame off the sensor's; points in no order
@@ -27,6 +27,11 @@ bearingBacktrack (const Eigen::Matrix2Xd& points);
  *  0.93–0.98; the CARMEN intel scans moved 0.3 m off their sensor up to 0.22, 1 m off
  *  up to 0.53. The chains on the shuffled and x-sorted test split found V 0.19 and 0.44,
  *  where beam order gives 0.86.
+ *
+ *  A scan in beam order whose bearings go clockwise (a laser mounted upside down, or a
+ *  converter that lists the beams the other way) is not: its shape features (turning
+ *  angles, the neighbours before and after a point) would read mirrored against the
+ *  counter-clockwise scans the models learned from. beamOrder () reads it backwards.
  */
 bool
 inBeamOrder (const Eigen::Matrix2Xd& points);
@@ -36,10 +41,11 @@ inBeamOrder (const Eigen::Matrix2Xd& points);
 constexpr double kBeamOrderBacktrack = 0.5;
 
 /** \brief The order to read a scan's points in for the CRF chains: 0, 1, …, n − 1 when
- *  it is in beam order (inBeamOrder ()); otherwise its points sorted by bearing,
- *  counter-clockwise, from the one after the widest gap between bearings (a partial
- *  field of view's back), points at the origin first and equal bearings in their
- *  index order.
+ *  it is in beam order counter-clockwise (inBeamOrder ()); n − 1, …, 0 when it is in
+ *  beam order clockwise; otherwise its points sorted by bearing, counter-clockwise,
+ *  from the one after the widest gap between bearings (a partial field of view's
+ *  back), points at the origin first and equal bearings in their index order. A scan
+ *  and the same scan listed the other way round are read alike.
  *
  *  \code
  *  const std::vector<int> order = pcl_crf::beamOrder (scan);

@@ -34,12 +34,13 @@ isReturn (double range, double range_max);
  *  A scan in no beam order (inBeamOrder () in pcl_crf/core/beam_order.h: shuffled, or
  *  sorted by a voxel grid) is put in one (beamOrder ()): the chains follow the order of
  *  the points, and in no order they lost most movers (V 0.19 on the shuffled test split).
+ *  A scan listed clockwise is read backwards, counter-clockwise as the models learned.
  */
 struct PairReturns
 {
   ScanPair pair;
   /** per kept source / target point: its index in the original scan, increasing (in
-   *  beam order, beamOrder (), when the scan was in no beam order). */
+   *  beam order, beamOrder (), when the scan was in no beam order or listed clockwise). */
   std::vector<int> source_index;
   std::vector<int> target_index;
   /** the original scans' sizes. */
