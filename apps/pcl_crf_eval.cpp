@@ -57,7 +57,8 @@ printHelp (const char* program)
               "                        data/models holds the defaults trained on data/default/train,\n"
               "                        installed in <prefix>/share/pcl_crf/models)\n");
   print_info ("  --clusters K          clusters for K-Means-like baselines (default: method's own)\n");
-  print_info ("  --format F            table | csv | json (default: table)\n");
+  print_info ("  --format F            table | csv | json (default: table); json also holds every pair's\n"
+              "                        scores (\"per_pair\")\n");
   print_info ("  --output FILE         write the csv/json/table there instead of stdout\n");
   print_info ("  --save-predictions D  write every pair's prediction to D/<method>/<pair>/\n");
   print_info ("  --tolerance M         association tolerance [m] (default: 0.1)\n");
