@@ -12,7 +12,7 @@ case "$mode" in
 esac
 
 packages=(build-essential cmake libpcl-dev liblbfgs-dev libgtest-dev libbenchmark-dev zlib1g-dev
-          xvfb xauth librosbag-dev libsensor-msgs-dev libgeometry-msgs-dev locales)
+          xvfb xauth librosbag-dev libsensor-msgs-dev libgeometry-msgs-dev locales python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
