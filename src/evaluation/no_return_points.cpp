@@ -1,27 +1,16 @@
 #include <pcl_crf/evaluation/no_return_points.h>
 #include <pcl_crf/core/beam_order.h>
+#include <pcl_crf/core/repeated_points.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <unordered_set>
 #include <utility>
 
 namespace pcl_crf {
 
 namespace {
-
-/** Hash of a point's exact coordinates. */
-struct ExactPointHash
-{
-  std::size_t
-  operator() (const std::pair<double, double>& p) const
-  {
-    const std::size_t x = std::hash<double> () (p.first), y = std::hash<double> () (p.second);
-    return x ^ (y + 0x9e3779b97f4a7c15ULL + (x << 6) + (x >> 2));
-  }
-};
 
 /** The columns \a kept of \a points, in that order. */
 Eigen::Matrix2Xd
@@ -39,12 +28,11 @@ columns (const Eigen::Matrix2Xd& points, const std::vector<int>& kept)
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {
+  const std::vector<int> first = firstOfEqualPoints (scan);
   std::vector<int> kept;
   kept.reserve (static_cast<std::size_t> (scan.cols ()));
-  std::unordered_set<std::pair<double, double>, ExactPointHash> seen;
-  seen.reserve (static_cast<std::size_t> (scan.cols ()));
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    if (isReturn (scan.col (i).norm (), range_max) && seen.emplace (scan (0, i), scan (1, i)).second)
+    if (first[static_cast<std::size_t> (i)] == i && isReturn (scan.col (i).norm (), range_max))
       kept.push_back (static_cast<int> (i));
   const bool every_point = static_cast<Eigen::Index> (kept.size ()) == scan.cols ();  // then kept is 0, 1, ...
   const std::vector<int> order = every_point ? beamOrder (scan) : beamOrder (columns (scan, kept));

@@ -3,10 +3,12 @@
 #include <pcl_crf/clustering/point_pairs.h>
 #include <pcl_crf/clustering/scan_clustering.h>
 #include <pcl_crf/core/knn_index.h>
+#include <pcl_crf/core/repeated_points.h>
 #include <pcl_crf/joint/joint_estimation.h>
 #include <pcl_crf/matching/lifted_matches.h>
 
 #include "cluster_numbering.h"
+#include "lifted_copies.h"
 #include "scan_views.h"
 
 #include <algorithm>
@@ -374,6 +376,12 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   const std::string odometry_problem = odometryProblem (odometry);
   if (!odometry_problem.empty ())
     fail (odometry_problem);
+  const std::vector<int> source_first = firstOfEqualPoints (source), target_first = firstOfEqualPoints (target);
+  if (repeatsAPoint (source_first) || repeatsAPoint (target_first))  // the first copies alone, lifted to the others
+    return detail::liftToCopies (estimateJoint (detail::columnsAt (source, firstCopies (source_first)),
+                                                detail::columnsAt (target, firstCopies (target_first)), odometry,
+                                                model, parameters),
+                                 source_first, target_first);
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);
   JointResult result;

@@ -179,6 +179,11 @@ associationPotentials (const AssociationStage& stage, const matching::PreparedTa
  *  (separateDistantParts ()), and the outliers the target saw through where the static
  *  motion puts them are marked as moved away (markPointsThatMovedAway ()).
  *
+ *  A point at exactly the coordinates of an earlier point of its scan is no return of
+ *  its own (firstOfEqualPoints () in pcl_crf/core/repeated_points.h): the estimate runs
+ *  on the first copies, and every copy takes its first copy's match, cluster and
+ *  moved-away mark.
+ *
  *  \param[in] source source scan in beam order [m, source frame]
  *  \param[in] target target scan in beam order [m, target frame]
  *  \param[in] odometry the sensor motion guess and its covariance (candidates, ego cluster)

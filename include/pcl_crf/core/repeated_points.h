@@ -1,0 +1,34 @@
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_crf {
+
+/** \brief Per point of \a points (a 2 x N scan): the index of the first point with
+ *  exactly its coordinates, its own index for the first of its copies (0 and −0 alike).
+ *
+ *  A laser measures one return per beam, so a point repeated exactly is no return of
+ *  its own: a converter's placeholder for a beam without one, or a scan copied into
+ *  itself. The estimators work on the first copies and give the others their results
+ *  (joint::estimateJoint ()); tens of thousands of copies of one point otherwise made
+ *  hundreds of clusters of it.
+ *
+ *  \code
+ *  const std::vector<int> first = pcl_crf::firstOfEqualPoints (scan);
+ *  if (pcl_crf::repeatsAPoint (first)) ...   // some point is a copy of an earlier one
+ *  \endcode
+ */
+std::vector<int>
+firstOfEqualPoints (const Eigen::Matrix2Xd& points);
+
+/** \brief Whether \a first (firstOfEqualPoints ()) names a point that repeats an earlier one. */
+bool
+repeatsAPoint (const std::vector<int>& first);
+
+/** \brief The indices of the first copies in \a first (firstOfEqualPoints ()), increasing. */
+std::vector<int>
+firstCopies (const std::vector<int>& first);
+
+}  // namespace pcl_crf

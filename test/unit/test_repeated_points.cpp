@@ -1,0 +1,104 @@
+#include <pcl_crf/core/repeated_points.h>
+#include <pcl_crf/core/prediction.h>
+#include <pcl_crf/io/dataset_io.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/joint/joint_model.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace pcl_crf;
+
+const joint::JointModel&
+jointModel ()
+{
+  static const joint::JointModel model =
+      joint::loadJointModel (std::string (PCL_CRF_SOURCE_DIR) + "/data/models/joint.model");
+  return model;
+}
+
+/** \a scan with copies of its columns \a copied appended, in that order. */
+Eigen::Matrix2Xd
+withCopies (const Eigen::Matrix2Xd& scan, const std::vector<int>& copied)
+{
+  Eigen::Matrix2Xd out (2, scan.cols () + static_cast<Eigen::Index> (copied.size ()));
+  out.leftCols (scan.cols ()) = scan;
+  for (std::size_t k = 0; k < copied.size (); ++k)
+    out.col (scan.cols () + static_cast<Eigen::Index> (k)) = scan.col (copied[k]);
+  return out;
+}
+
+/** The motion of point i's cluster in \a r, or the identity for an outlier. */
+Rigid2d
+motionOf (const joint::JointResult& r, std::size_t i)
+{
+  const int l = r.source_cluster[i];
+  return l == kOutlierCluster ? Rigid2d::Identity () : r.cluster_motions[static_cast<std::size_t> (l)];
+}
+
+}  // namespace
+
+TEST (RepeatedPoints, EachPointNamesItsFirstCopy)
+{
+  Eigen::Matrix2Xd points (2, 6);
+  points << 1.0, 0.0, 1.0, -0.0, 2.0, 1.0,  //
+      1.0, 0.0, 1.0, 0.0, 2.0, 1.5;
+  const std::vector<int> first = firstOfEqualPoints (points);
+  EXPECT_EQ (first, (std::vector<int>{0, 1, 0, 1, 4, 5}));  // −0 is 0; (1, 1.5) is not (1, 1)
+  EXPECT_TRUE (repeatsAPoint (first));
+  EXPECT_EQ (firstCopies (first), (std::vector<int>{0, 1, 4, 5}));
+  EXPECT_FALSE (repeatsAPoint (firstOfEqualPoints (Eigen::Matrix2Xd::Identity (2, 2))));
+  EXPECT_TRUE (firstOfEqualPoints (Eigen::Matrix2Xd (2, 0)).empty ());
+}
+
+TEST (JointEstimation, RepeatedPointsTakeTheResultOfTheirFirstCopy)
+{
+  // Test pair 16 (a car 3.8 m against the world) with source points 5, 100 and 200 and
+  // target points 0 and 50 repeated at the ends of the scans: the estimate on the first
+  // copies is the pair's own, and every copy takes its first copy's match and cluster.
+  const ScanPair pair = loadScanPair (std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test/pair_0016");
+  const std::vector<int> source_copied{5, 100, 200};
+  const Eigen::Matrix2Xd source = withCopies (pair.source, source_copied);
+  const Eigen::Matrix2Xd target = withCopies (pair.target, {0, 50});
+  const joint::JointResult plain = joint::estimateJoint (pair.source, pair.target, pair.odometry, jointModel ());
+  const joint::JointResult r = joint::estimateJoint (source, target, pair.odometry, jointModel ());
+  ASSERT_EQ (r.source_match.size (), static_cast<std::size_t> (source.cols ()));
+  ASSERT_GE (plain.cluster_motions.size (), 2u);
+  EXPECT_TRUE (r.T_source_target.isApprox (plain.T_source_target, 0.0));
+  EXPECT_EQ (r.cluster_motions.size (), plain.cluster_motions.size ());
+  const auto n = static_cast<std::size_t> (pair.source.cols ());
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ (r.source_match[i], plain.source_match[i]) << i;
+    EXPECT_EQ (r.source_cluster[i] == kOutlierCluster, plain.source_cluster[i] == kOutlierCluster) << i;
+    EXPECT_TRUE (motionOf (r, i).isApprox (motionOf (plain, i), 0.0)) << i;
+  }
+  for (std::size_t k = 0; k < source_copied.size (); ++k) {
+    const auto copy = n + k, first = static_cast<std::size_t> (source_copied[k]);
+    EXPECT_EQ (r.source_match[copy], r.source_match[first]);
+    EXPECT_EQ (r.source_cluster[copy], r.source_cluster[first]);
+  }
+  int sizes = static_cast<int> (r.outliers.size ());
+  for (const int size : r.cluster_sizes)
+    sizes += size;
+  EXPECT_EQ (sizes, source.cols ());
+}
+
+TEST (JointEstimation, CopiesOfOnePointAreEstimatedAsOnePoint)
+{
+  // 100 000 copies of one point in each scan took 8.5 s (hundreds of clusters of one
+  // point); they are one point and all take its answer.
+  constexpr Eigen::Index kCopies = 100000;
+  const Eigen::Matrix2Xd source = Eigen::Vector2d (3.0, 1.0).replicate (1, kCopies);
+  const Eigen::Matrix2Xd target = Eigen::Vector2d (3.1, 1.0).replicate (1, kCopies);
+  const joint::JointResult r = joint::estimateJoint (source, target, Odometry{}, jointModel ());
+  ASSERT_EQ (r.source_cluster.size (), static_cast<std::size_t> (kCopies));
+  for (Eigen::Index i = 1; i < kCopies; ++i) {
+    ASSERT_EQ (r.source_cluster[i], r.source_cluster[0]) << i;
+    ASSERT_EQ (r.source_match[i], r.source_match[0]) << i;
+  }
+  EXPECT_TRUE (r.source_match[0] == kNoMatch || r.source_match[0] == 0);  // the first copy of the target point
+}
