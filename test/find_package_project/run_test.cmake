@@ -3,12 +3,7 @@
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/install)
 
-function(run_step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL 0)
-    message(FATAL_ERROR "step failed (${result}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
 
 run_step(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${prefix})
 run_step(${CMAKE_COMMAND} -S ${SOURCE_DIR}/test/find_package_project -B ${WORK_DIR}/build

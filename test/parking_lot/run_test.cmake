@@ -3,12 +3,7 @@
 # scores exactly as sick: the methods read a clockwise scan backwards.
 file(REMOVE_RECURSE ${WORK_DIR})
 
-function(run_step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL 0)
-    message(FATAL_ERROR "step failed (${result}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_step.cmake)
 
 foreach(preset sick clockwise)
   run_step(${PYTHON} ${SOURCE_DIR}/scripts/parking_lot/simulate.py --preset ${preset} --pairs 3 -o ${WORK_DIR}/${preset} -q)
