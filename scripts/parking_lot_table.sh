@@ -18,6 +18,8 @@
 #   OUT           keep the datasets and CSVs here          (default: a temporary folder;
 #                 the pair folders of a kept OUT/PRESET are replaced)
 set -euo pipefail
+# A relative OUT names a folder of the caller's, not of the source tree.
+[ -z "${OUT:-}" ] || OUT=$(mkdir -p "$OUT" && cd "$OUT" && pwd)
 cd "$(dirname "$0")/.."
 
 bin=${PCL_CRF_BIN:-build/apps}
@@ -34,6 +36,11 @@ out=${OUT:-$(mktemp -d)}
 mkdir -p "$out"
 
 for preset in $presets; do
+  # pcl_crf_eval scores every pair folder: a kept OUT/PRESET must hold the simulator's alone.
+  if [ -d "$out/$preset" ] && find "$out/$preset" -mindepth 1 -maxdepth 1 ! -name 'pair_[0-9][0-9][0-9][0-9]' | grep -q .; then
+    echo "error: $out/$preset holds files other than the simulator's pair folders: give an empty OUT" >&2
+    exit 1
+  fi
   python3 scripts/parking_lot/simulate.py --preset "$preset" --pairs "$pairs" -o "$out/$preset" --force -q
   echo "## $preset ($pairs pairs)"
   "$bin/pcl_crf_eval" "$out/$preset" --method "$methods" --models "$models" -q --format csv \

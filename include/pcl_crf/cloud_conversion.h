@@ -4,10 +4,12 @@
 #include <pcl_crf/core/planar_transform.h>
 
 #include <pcl/console/print.h>
+#include <pcl/correspondence.h>
 #include <pcl/point_cloud.h>
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -62,6 +64,15 @@ toMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indi
 }
 
 namespace detail {
+
+/** \brief Sorts \a correspondences by source point (index_query), in cloud order
+ *  whatever order the chains read the cloud in (a clockwise or shuffled one). */
+inline void
+sortByQuery (pcl::Correspondences& correspondences)
+{
+  std::sort (correspondences.begin (), correspondences.end (),
+             [] (const pcl::Correspondence& a, const pcl::Correspondence& b) { return a.index_query < b.index_query; });
+}
 
 /** \brief \a xy with its columns, and \a kept with them, in beam order counter-clockwise
  *  (beamOrder ()): unchanged when they are in one. */

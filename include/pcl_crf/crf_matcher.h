@@ -35,7 +35,8 @@ namespace pcl_crf {
  *  clouds. A trained model is required (setModel / loadModel; pcl_crf_train
  *  writes one, data/models/crf-matching.model is the default).
  *
- *  determineCorrespondences returns the MAP association without the outliers:
+ *  determineCorrespondences returns the MAP association without the outliers, by source
+ *  index:
  *  pcl::Correspondence::distance is the **squared** distance between the target
  *  point and the source point moved by the initial guess (inside
  *  pcl::IterativeClosestPoint the guess is the identity and the source cloud is
@@ -263,7 +264,7 @@ public:
   }
 
   // ------------------------------------------------------------------ results
-  /** \brief Source cloud indices declared outliers by the last run. */
+  /** \brief Source cloud indices declared outliers by the last run, increasing. */
   const pcl::Indices&
   getOutliers () const { return outliers_; }
 

@@ -114,12 +114,13 @@ public:
   align (PointCloudSource& output, const Matrix4& guess);
 
   /** \brief The associations of the last align() (see joint::JointResult::source_match):
-   *  (source index, target index, squared distance after the static motion). Outliers
-   *  have none. */
+   *  (source index, target index, squared distance after the static motion), by source
+   *  index. Outliers have none. */
   const pcl::Correspondences&
   getCorrespondences () const { return correspondences_; }
 
-  /** \brief The clusters of the last align(), largest first (outliers excluded). */
+  /** \brief The clusters of the last align(), largest first (outliers excluded), each
+   *  one's indices increasing. */
   const std::vector<pcl::PointIndices>&
   getClusters () const { return clusters_; }
 
@@ -131,7 +132,7 @@ public:
   int
   getStaticCluster () const { return result_.static_cluster; }
 
-  /** \brief Source points in the outlier cluster. */
+  /** \brief Source points in the outlier cluster, increasing. */
   const pcl::Indices&
   getOutliers () const { return outliers_; }
 

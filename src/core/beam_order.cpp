@@ -98,9 +98,10 @@ bearingWay (const Eigen::Matrix2Xd& points)
 /** How a scan is to be read for the chains. */
 enum class Reading
 {
-  kAsItIs,     // in beam order, counter-clockwise
-  kBackwards,  // in beam order, clockwise
-  kByBearing   // in no beam order
+  kAsItIs,                   // in beam order, counter-clockwise
+  kBackwards,                // in beam order, clockwise
+  kByBearing,                // in no beam order, mostly counter-clockwise
+  kByBearingListedClockwise  // in no beam order, mostly clockwise
 };
 
 Reading
@@ -111,14 +112,16 @@ readingOf (const Eigen::Matrix2Xd& points)
     return turn == Turn::kClockwise ? Reading::kBackwards : Reading::kAsItIs;
   const BearingWay way = bearingWay (points);
   if (way.backtrack () > kBeamOrderBacktrack)
-    return Reading::kByBearing;
+    return way.clockwise > way.counter_clockwise ? Reading::kByBearingListedClockwise : Reading::kByBearing;
   return way.clockwise > way.counter_clockwise ? Reading::kBackwards : Reading::kAsItIs;
 }
 
 /** The indices of \a points sorted by bearing, counter-clockwise from the one after the
- *  widest gap, the origin's points first, equal bearings in index order. */
+ *  widest gap, the origin's points first, equal bearings in index order (decreasing when
+ *  \a listed_clockwise: a scan and the same scan listed the other way round give one
+ *  order of their points). */
 std::vector<int>
-sortedByBearing (const Eigen::Matrix2Xd& points)
+sortedByBearing (const Eigen::Matrix2Xd& points, bool listed_clockwise)
 {
   const auto n = static_cast<int> (points.cols ());
   std::vector<int> order (static_cast<std::size_t> (n));
@@ -127,7 +130,9 @@ sortedByBearing (const Eigen::Matrix2Xd& points)
   for (int k = 0; k < n; ++k)
     if (hasBearing (points.col (k)))
       bearing[k] = std::atan2 (points (1, k), points (0, k));
-  std::stable_sort (order.begin (), order.end (), [&bearing] (int a, int b) { return bearing[a] < bearing[b]; });
+  std::sort (order.begin (), order.end (), [&bearing, listed_clockwise] (int a, int b) {
+    return bearing[a] < bearing[b] || (bearing[a] == bearing[b] && (listed_clockwise ? a > b : a < b));
+  });
   // Start after the widest gap between consecutive bearings (the last to the first across ±π included).
   const auto first = static_cast<std::size_t> (std::count (bearing.begin (), bearing.end (), -2.0 * kPi));
   std::size_t start = first;
@@ -165,8 +170,8 @@ std::vector<int>
 beamOrder (const Eigen::Matrix2Xd& points)
 {
   const Reading reading = readingOf (points);
-  if (reading == Reading::kByBearing)
-    return sortedByBearing (points);
+  if (reading == Reading::kByBearing || reading == Reading::kByBearingListedClockwise)
+    return sortedByBearing (points, reading == Reading::kByBearingListedClockwise);
   std::vector<int> order (static_cast<std::size_t> (points.cols ()));
   std::iota (order.begin (), order.end (), 0);
   if (reading == Reading::kBackwards)

@@ -22,24 +22,30 @@ columns (const Eigen::Matrix2Xd& points, const std::vector<int>& kept)
   return out;
 }
 
-/** The indices of the points of \a scan that are returns (isReturn ()), each position
- *  once (a return at the coordinates of an earlier one is left out), in beam order
- *  (beamOrder (): increasing unless the scan was in no beam order or listed clockwise). */
+/** The indices of the points of \a scan that are returns (isReturn ()), in beam order
+ *  (beamOrder (): increasing unless the scan was in no beam order or listed clockwise),
+ *  each position once: a return at the coordinates of one before it in that order is
+ *  left out, so that a scan listed either way round keeps the same copy. */
 std::vector<int>
 returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
 {
-  const std::vector<int> first = firstOfEqualPoints (scan);
-  std::vector<int> kept;
-  kept.reserve (static_cast<std::size_t> (scan.cols ()));
+  std::vector<int> returns;
+  returns.reserve (static_cast<std::size_t> (scan.cols ()));
   for (Eigen::Index i = 0; i < scan.cols (); ++i)
-    if (first[static_cast<std::size_t> (i)] == i && isReturn (scan.col (i).norm (), range_max))
-      kept.push_back (static_cast<int> (i));
-  const bool every_point = static_cast<Eigen::Index> (kept.size ()) == scan.cols ();  // then kept is 0, 1, ...
-  const std::vector<int> order = every_point ? beamOrder (scan) : beamOrder (columns (scan, kept));
-  std::vector<int> ordered (kept.size ());
-  for (std::size_t k = 0; k < kept.size (); ++k)
-    ordered[k] = kept[static_cast<std::size_t> (order[k])];
-  return ordered;
+    if (isReturn (scan.col (i).norm (), range_max))
+      returns.push_back (static_cast<int> (i));
+  const bool every_point = static_cast<Eigen::Index> (returns.size ()) == scan.cols ();  // then 0, 1, ...
+  const std::vector<int> order = every_point ? beamOrder (scan) : beamOrder (columns (scan, returns));
+  std::vector<int> chain (returns.size ());
+  for (std::size_t k = 0; k < returns.size (); ++k)
+    chain[k] = returns[static_cast<std::size_t> (order[k])];
+  const std::vector<int> first = firstOfEqualPoints (columns (scan, chain));
+  std::vector<int> kept;
+  kept.reserve (chain.size ());
+  for (std::size_t k = 0; k < chain.size (); ++k)
+    if (first[k] == static_cast<int> (k))
+      kept.push_back (chain[k]);
+  return kept;
 }
 
 /** Whether the returns of either scan of \a pair (returnsOf ()) leave out a point or

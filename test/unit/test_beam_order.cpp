@@ -147,9 +147,18 @@ TEST (BeamOrder, ALittleJitterKeepsTheLasersOrderAndASortPutsTheOriginFirst)
   EXPECT_GT (pcl_crf::bearingBacktrack (jittered), 0.0);
   EXPECT_LT (pcl_crf::bearingBacktrack (jittered), 0.1);
   EXPECT_EQ (pcl_crf::beamOrder (jittered), identity (degrees.size ()));
-  // Points at the origin come first when a scan is sorted, equal bearings in index order.
+  // Points at the origin come first when a scan is sorted.
   Eigen::Matrix2Xd mixed = atBearings ({30.0, -20.0, 25.0, -20.0, 10.0, 0.0});
   mixed.col (5).setZero ();
   ASSERT_FALSE (pcl_crf::inBeamOrder (mixed));  // 75° forward, 95° back
   EXPECT_EQ (pcl_crf::beamOrder (mixed), (std::vector<int>{5, 1, 3, 4, 2, 0}));
+  // Equal bearings (point 3 a copy of point 1) in index order, decreasing when the scan
+  // goes mostly clockwise, as this one: listed the other way round, it is read in the
+  // same order of its points.
+  mixed.col (3) = mixed.col (1);
+  EXPECT_EQ (pcl_crf::beamOrder (mixed), (std::vector<int>{5, 3, 1, 4, 2, 0}));
+  std::vector<int> backwards = identity (6);
+  std::reverse (backwards.begin (), backwards.end ());
+  const Eigen::Matrix2Xd reversed = reordered (mixed, backwards);
+  EXPECT_EQ (pcl_crf::beamOrder (reversed), (std::vector<int>{0, 2, 4, 1, 3, 5}));  // points 5, 3, 1, 4, 2, 0
 }

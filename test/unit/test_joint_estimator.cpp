@@ -980,6 +980,13 @@ expectChainedInBeamOrder (bool shuffle)
     std::sort (mapped.begin (), mapped.end ());
     EXPECT_EQ (mapped, ordered.getClusters ()[l].indices) << "cluster " << l;
   }
+  // The index lists are in cloud order (increasing), whatever order the chains read.
+  for (const pcl::PointIndices& cluster : reordered.getClusters ())
+    EXPECT_TRUE (std::is_sorted (cluster.indices.begin (), cluster.indices.end ()));
+  EXPECT_TRUE (std::is_sorted (reordered.getOutliers ().begin (), reordered.getOutliers ().end ()));
+  EXPECT_TRUE (std::is_sorted (
+      reordered.getCorrespondences ().begin (), reordered.getCorrespondences ().end (),
+      [] (const pcl::Correspondence& a, const pcl::Correspondence& b) { return a.index_query < b.index_query; }));
   // getResult () is in beam order, its points named by getResultSourceIndices ().
   EXPECT_EQ (reordered.getResult ().source_cluster, ordered.getResult ().source_cluster);
   for (std::size_t k = 0; k < reordered.getResultSourceIndices ().size (); ++k)

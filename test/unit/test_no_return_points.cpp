@@ -1,5 +1,6 @@
 // Points at the laser's maximum range are beams without a return: the evaluation methods
 // leave them out and predict them in the static world, unmatched.
+#include <pcl_crf/core/beam_order.h>
 #include <pcl_crf/evaluation/method.h>
 #include <pcl_crf/evaluation/no_return_points.h>
 #include <pcl_crf/io/dataset_io.h>
@@ -201,20 +202,20 @@ reversed (std::size_t n)
   return order;
 }
 
-/** Test pair 16 with its scans' points in the orders \a source_order and \a
- *  target_order: the chains see them in beam order, counter-clockwise, and the joint
- *  model's answer is the pair's own, point for point. */
+/** \a pair with its scans' points in the orders \a source_order and \a target_order:
+ *  the chains see them in beam order, counter-clockwise, and the joint model's answer
+ *  is the pair's own, point for point. */
 void
-expectPredictedAsInBeamOrder (const std::vector<int>& source_order, const std::vector<int>& target_order)
+expectPredictedAsInBeamOrder (const ScanPair& pair, const std::vector<int>& source_order,
+                              const std::vector<int>& target_order)
 {
-  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
   const ScanPair reordered = reorderedPair (pair, source_order, target_order);
-  validateScanPair (reordered, "reordered pair_0016");
-  const PairReturns returns = keepReturns (reordered);
+  validateScanPair (reordered, "reordered " + pair.name);
+  const PairReturns returns = keepReturns (reordered), in_order = keepReturns (pair);
   EXPECT_FALSE (returns.keepsEveryPoint ());
-  EXPECT_EQ (returns.pair.source, pair.source);  // the laser's order, from its first beam
-  EXPECT_EQ (returns.pair.target, pair.target);
-  EXPECT_EQ (returns.pair.source_match, pair.source_match);
+  EXPECT_EQ (returns.pair.source, in_order.pair.source);  // the laser's order, from its first beam
+  EXPECT_EQ (returns.pair.target, in_order.pair.target);
+  EXPECT_EQ (returns.pair.source_match, in_order.pair.source_match);
   const auto method = createEvaluationMethod ("joint");
   method->loadModel (kModels + "joint.model");
   const Prediction plain = method->predict (pair);
@@ -237,7 +238,7 @@ TEST (NoReturnPoints, AShuffledPairIsPredictedAsInBeamOrder)
   std::mt19937 rng (16);
   const std::vector<int> source_order = shuffled (static_cast<std::size_t> (pair.source.cols ()), rng);
   const std::vector<int> target_order = shuffled (static_cast<std::size_t> (pair.target.cols ()), rng);
-  expectPredictedAsInBeamOrder (source_order, target_order);
+  expectPredictedAsInBeamOrder (pair, source_order, target_order);
 }
 
 TEST (NoReturnPoints, AClockwisePairIsPredictedAsCounterClockwise)
@@ -247,8 +248,24 @@ TEST (NoReturnPoints, AClockwisePairIsPredictedAsCounterClockwise)
   // clockwise the chains decided close calls differently and the shape features
   // (turning angles, neighbours before and after) were mirrored.
   const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
-  expectPredictedAsInBeamOrder (reversed (static_cast<std::size_t> (pair.source.cols ())),
+  expectPredictedAsInBeamOrder (pair, reversed (static_cast<std::size_t> (pair.source.cols ())),
                                 reversed (static_cast<std::size_t> (pair.target.cols ())));
+}
+
+TEST (NoReturnPoints, ARepeatedPointListedClockwiseKeepsItsAnswer)
+{
+  // A converter repeats target point 41 (a match of the joint model) after the last
+  // beam: the bearings go back there, so the target is sorted by bearing, the two copies
+  // tied. Listed clockwise, the copy kept, and every answer, are the counter-clockwise
+  // listing's.
+  ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  const Eigen::Index m = pair.target.cols ();
+  pair.target.conservativeResize (2, m + 1);
+  pair.target.col (m) = pair.target.col (41);
+  pair.target_object.push_back (pair.target_object[41]);
+  ASSERT_FALSE (inBeamOrder (pair.target));
+  expectPredictedAsInBeamOrder (pair, reversed (static_cast<std::size_t> (pair.source.cols ())),
+                                reversed (static_cast<std::size_t> (m + 1)));
 }
 
 TEST (NoReturnPoints, RepeatedPointsAreLeftOutOnceTheirFirstIsKept)

@@ -44,8 +44,10 @@ constexpr double kBeamOrderBacktrack = 0.5;
  *  it is in beam order counter-clockwise (inBeamOrder ()); n − 1, …, 0 when it is in
  *  beam order clockwise; otherwise its points sorted by bearing, counter-clockwise,
  *  from the one after the widest gap between bearings (a partial field of view's
- *  back), points at the origin first and equal bearings in their index order. A scan
- *  and the same scan listed the other way round are read alike.
+ *  back), points at the origin first and equal bearings in their index order
+ *  (decreasing when the scan's bearings go mostly clockwise). A scan and the same scan
+ *  listed the other way round are read alike, but for a scan whose steps all go no way
+ *  (every point on one bearing), which is read as listed.
  *
  *  \code
  *  const std::vector<int> order = pcl_crf::beamOrder (scan);

@@ -180,6 +180,8 @@ pcl_crf::CRFClusterer<PointT>::storeResults (const clustering::ScanClustering& r
   for (std::size_t k = 0; k < result.source_cluster.size (); ++k)
     if (result.source_cluster[k] >= 0)
       clusters[result.source_cluster[k]].indices.push_back (cloud_index[k]);
+  for (pcl::PointIndices& cluster : clusters)  // in cloud order, whatever order the chain read
+    std::sort (cluster.indices.begin (), cluster.indices.end ());
   marginals_.assign (input_->size (), Eigen::VectorXd ());
   for (std::size_t k = 0; k < result.pairs.size (); ++k)
     marginals_[cloud_index[result.pairs.source_index[k]]] = result.marginals.col (static_cast<Eigen::Index> (k));

@@ -6,6 +6,7 @@
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <exception>
 
 namespace pcl_crf {
@@ -170,6 +171,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::computeMatches ()
       states.push_back (target_index_[result_.candidates.target (static_cast<int> (k), c)]);
     marginals_[i] = result_.marginals[k];
   }
+  std::sort (outliers_.begin (), outliers_.end ());  // in cloud order, whatever order the chain read
   return true;
 }
 
@@ -186,6 +188,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineCorrespondences (pcl::Cor
   for (std::size_t k = 0; k < source_index_.size (); ++k)
     if (correspondenceOf (k, max_distance, c))
       correspondences.push_back (c);
+  detail::sortByQuery (correspondences);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> bool
@@ -228,6 +231,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences
   for (std::size_t k = 0; k < source_index_.size (); ++k)
     if (correspondenceOf (k, max_distance, c) && backward.matches[result_.matches[k]] == static_cast<int> (k))
       correspondences.push_back (c);
+  detail::sortByQuery (correspondences);
 }
 
 }  // namespace pcl_crf

@@ -85,6 +85,12 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::storeResults (const Eigen::
     cluster_transformations_.push_back (toMatrix4<Scalar> (T));
   for (const int i : result_.moved_away)
     moved_away_.push_back (source_index[i]);
+  // In cloud order, whatever order the chains read the cloud in (a clockwise or shuffled one).
+  for (pcl::PointIndices& cluster : clusters_)
+    std::sort (cluster.indices.begin (), cluster.indices.end ());
+  std::sort (outliers_.begin (), outliers_.end ());
+  std::sort (moved_away_.begin (), moved_away_.end ());
+  detail::sortByQuery (correspondences_);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar> void
