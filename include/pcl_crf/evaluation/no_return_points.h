@@ -25,9 +25,9 @@ isReturn (double range, double range_max);
  *
  *  A dataset should leave beams without a return out (data/README.md); one converted
  *  with them kept as points at the maximum range would otherwise show every method an
- *  arc that moves with the sensor. A point at the exact coordinates of an earlier
- *  return of its scan (a converter's placeholder for a beam without a return, say) is
- *  left out too: it is no return of another beam, and tens of thousands of them made
+ *  arc that moves with the sensor. A point at the exact coordinates of a return before
+ *  it in beam order (beamOrder (), so a scan listed either way round keeps the same
+ *  copy; a converter's placeholder for a beam without a return, say) is left out too: it is no return of another beam, and tens of thousands of them made
  *  every kd-tree search visit them all (exact ties at distance 0 prune nothing: a
  *  minute per pair).
  *
