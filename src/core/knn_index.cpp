@@ -1,45 +1,16 @@
 #include <pcl_crf/core/knn_index.h>
+#include <pcl_crf/core/repeated_points.h>
 
 #include <flann/flann.hpp>
 
 #include <algorithm>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
 namespace pcl_crf {
-
-namespace {
-
-/** Hash and equality of the columns of one matrix, by value (0 and −0 alike). */
-struct ColumnHash
-{
-  const Eigen::MatrixXd* m;
-  std::size_t
-  operator() (Eigen::Index c) const
-  {
-    std::size_t h = 0;
-    for (Eigen::Index r = 0; r < m->rows (); ++r)
-      h = h * 1000003u ^ std::hash<double> () ((*m) (r, c));
-    return h;
-  }
-};
-
-struct ColumnEqual
-{
-  const Eigen::MatrixXd* m;
-  bool
-  operator() (Eigen::Index a, Eigen::Index b) const
-  {
-    return (m->col (a).array () == m->col (b).array ()).all ();
-  }
-};
-
-}  // namespace
 
 /** The points, and, when some are equal, the distinct ones with the copies of each:
  *  FLANN's kd-tree cannot split a set of equal points, so a leaf of thousands of
@@ -58,13 +29,12 @@ struct KnnIndex::Impl
   groupCopies ()
   {
     const Eigen::Index n = points.cols ();
-    std::unordered_map<Eigen::Index, int, ColumnHash, ColumnEqual> first (static_cast<std::size_t> (n),
-                                                                         ColumnHash{&points}, ColumnEqual{&points});
+    const std::vector<int> first = firstOfEqualPoints (points);
     std::vector<int> distinct_of (static_cast<std::size_t> (n));
     int count = 0;
     for (Eigen::Index c = 0; c < n; ++c) {
-      const auto found = first.emplace (c, count);
-      distinct_of[c] = found.second ? count++ : found.first->second;
+      const int f = first[static_cast<std::size_t> (c)];
+      distinct_of[c] = f == c ? count++ : distinct_of[f];
     }
     distinct.resize (0, 0);
     copy_offsets.clear ();

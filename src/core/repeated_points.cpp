@@ -2,36 +2,47 @@
 
 #include <functional>
 #include <unordered_map>
-#include <utility>
 
 namespace pcl_crf {
 
 namespace {
 
-/** Hash of a point's exact coordinates (std::hash<double> gives 0 and −0 one value). */
-struct ExactPointHash
+/** Hash and equality of the columns of one matrix, by value (std::hash<double> gives 0
+ *  and −0 one value). */
+struct ColumnHash
 {
+  const Eigen::Ref<const Eigen::MatrixXd>* m;
   std::size_t
-  operator() (const std::pair<double, double>& p) const
+  operator() (Eigen::Index c) const
   {
-    const std::size_t x = std::hash<double> () (p.first), y = std::hash<double> () (p.second);
-    return x ^ (y + 0x9e3779b97f4a7c15ULL + (x << 6) + (x >> 2));
+    std::size_t h = 0;
+    for (Eigen::Index r = 0; r < m->rows (); ++r)
+      h = h * 1000003u ^ std::hash<double> () ((*m) (r, c));
+    return h;
+  }
+};
+
+struct ColumnEqual
+{
+  const Eigen::Ref<const Eigen::MatrixXd>* m;
+  bool
+  operator() (Eigen::Index a, Eigen::Index b) const
+  {
+    return (m->col (a).array () == m->col (b).array ()).all ();
   }
 };
 
 }  // namespace
 
 std::vector<int>
-firstOfEqualPoints (const Eigen::Matrix2Xd& points)
+firstOfEqualPoints (const Eigen::Ref<const Eigen::MatrixXd>& points)
 {
-  const auto n = static_cast<std::size_t> (points.cols ());
-  std::vector<int> first (n);
-  std::unordered_map<std::pair<double, double>, int, ExactPointHash> seen;
-  seen.reserve (n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto index = static_cast<Eigen::Index> (i);
-    first[i] = seen.emplace (std::make_pair (points (0, index), points (1, index)), static_cast<int> (i)).first->second;
-  }
+  const Eigen::Index n = points.cols ();
+  std::unordered_map<Eigen::Index, int, ColumnHash, ColumnEqual> seen (static_cast<std::size_t> (n),
+                                                                       ColumnHash{&points}, ColumnEqual{&points});
+  std::vector<int> first (static_cast<std::size_t> (n));
+  for (Eigen::Index i = 0; i < n; ++i)
+    first[static_cast<std::size_t> (i)] = seen.emplace (i, static_cast<int> (i)).first->second;
   return first;
 }
 

@@ -36,15 +36,18 @@ returnsOf (const Eigen::Matrix2Xd& scan, double range_max)
       returns.push_back (static_cast<int> (i));
   const bool every_point = static_cast<Eigen::Index> (returns.size ()) == scan.cols ();  // then 0, 1, ...
   const std::vector<int> order = every_point ? beamOrder (scan) : beamOrder (columns (scan, returns));
-  std::vector<int> chain (returns.size ());
-  for (std::size_t k = 0; k < returns.size (); ++k)
-    chain[k] = returns[static_cast<std::size_t> (order[k])];
-  const std::vector<int> first = firstOfEqualPoints (columns (scan, chain));
+  const std::vector<int> copies_of = firstOfEqualPoints (scan);  // one entry per set of equal points
+  std::vector<bool> seen (static_cast<std::size_t> (scan.cols ()), false);
   std::vector<int> kept;
-  kept.reserve (chain.size ());
-  for (std::size_t k = 0; k < chain.size (); ++k)
-    if (first[k] == static_cast<int> (k))
-      kept.push_back (chain[k]);
+  kept.reserve (returns.size ());
+  for (const int k : order) {
+    const int i = returns[static_cast<std::size_t> (k)];
+    const auto copies = static_cast<std::size_t> (copies_of[static_cast<std::size_t> (i)]);
+    if (!seen[copies]) {
+      seen[copies] = true;
+      kept.push_back (i);
+    }
+  }
   return kept;
 }
 

@@ -378,9 +378,9 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
     fail (odometry_problem);
   const std::vector<int> source_first = firstOfEqualPoints (source), target_first = firstOfEqualPoints (target);
   if (repeatsAPoint (source_first) || repeatsAPoint (target_first))  // the first copies alone, lifted to the others
-    return detail::liftToCopies (estimateJoint (detail::columnsAt (source, firstCopies (source_first)),
-                                                detail::columnsAt (target, firstCopies (target_first)), odometry,
-                                                model, parameters),
+    return detail::liftToCopies (estimateJoint (source (Eigen::all, firstCopies (source_first)),
+                                                target (Eigen::all, firstCopies (target_first)), odometry, model,
+                                                parameters),
                                  source_first, target_first);
   const matching::ThinnedPair thinned =
       matching::thinPair (source, target, model.matcher.parameters.training_beam_spacing);

@@ -6,15 +6,6 @@
 namespace pcl_crf {
 namespace joint {
 
-Eigen::Matrix2Xd
-detail::columnsAt (const Eigen::Matrix2Xd& scan, const std::vector<int>& indices)
-{
-  Eigen::Matrix2Xd columns (2, static_cast<Eigen::Index> (indices.size ()));
-  for (std::size_t k = 0; k < indices.size (); ++k)
-    columns.col (static_cast<Eigen::Index> (k)) = scan.col (indices[k]);
-  return columns;
-}
-
 JointResult
 detail::liftToCopies (const JointResult& distinct, const std::vector<int>& source_first,
                       const std::vector<int>& target_first)

@@ -10,10 +10,6 @@ namespace pcl_crf {
 namespace joint {
 namespace detail {
 
-/** The columns \a indices of \a scan, in that order. */
-Eigen::Matrix2Xd
-columnsAt (const Eigen::Matrix2Xd& scan, const std::vector<int>& indices);
-
 /** \a distinct, a result over the first copies of the source points against the first
  *  copies of the target points (firstCopies () of \a source_first and \a target_first,
  *  firstOfEqualPoints () of each scan), lifted to every point: a copy takes its first

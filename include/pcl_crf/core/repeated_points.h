@@ -6,8 +6,9 @@
 
 namespace pcl_crf {
 
-/** \brief Per point of \a points (a 2 x N scan): the index of the first point with
- *  exactly its coordinates, its own index for the first of its copies (0 and −0 alike).
+/** \brief Per point of \a points (the columns of a 2 x N scan, or of any d x N matrix):
+ *  the index of the first point with exactly its coordinates, its own index for the
+ *  first of its copies (0 and −0 alike).
  *
  *  A laser measures one return per beam, so a point repeated exactly is no return of
  *  its own: a converter's placeholder for a beam without one, or a scan copied into
@@ -21,7 +22,7 @@ namespace pcl_crf {
  *  \endcode
  */
 std::vector<int>
-firstOfEqualPoints (const Eigen::Matrix2Xd& points);
+firstOfEqualPoints (const Eigen::Ref<const Eigen::MatrixXd>& points);
 
 /** \brief Whether \a first (firstOfEqualPoints ()) names a point that repeats an earlier one. */
 bool
