@@ -1,3 +1,4 @@
+#include <pcl_crf/core/repeated_points.h>
 #include <pcl_crf/matching/scan_matching.h>
 #include <pcl_crf/matching/lifted_matches.h>
 #include <pcl_crf/matching/matching_chain.h>
@@ -104,6 +105,9 @@ liftMatchResult (const MatchResult& coarse, const Eigen::Matrix2Xd& source, cons
     groups[k] = coarse.matches[k] == kNoMatch ? -1 : 0;
   MatchResult result;
   result.matches = liftMatches (source, target.points, thinned, coarse.matches, groups, {coarse.T_target_source});
+  for (int& j : result.matches)  // a lifted match may be a later copy of its target point
+    if (j != kNoMatch)
+      j = target.first_copy[static_cast<std::size_t> (j)];
   result.map_probability.resize (source.cols ());
   for (int i = 0; i < static_cast<int> (source.cols ()); ++i) {
     const int anchor = thinned.anchors[i];
@@ -112,6 +116,61 @@ liftMatchResult (const MatchResult& coarse, const Eigen::Matrix2Xd& source, cons
   }
   result.T_target_source = coarse.T_target_source;
   result.passes = coarse.passes;
+  result.inlier_count = static_cast<int> (
+      std::count_if (result.matches.begin (), result.matches.end (), [] (int j) { return j != kNoMatch; }));
+  return result;
+}
+
+/** \a target's thinned scan over its first copies (firstOfEqualPoints), indexing the full scan. */
+ThinnedScan
+thinFirstCopies (const Eigen::Matrix2Xd& target, const std::vector<int>& first_copy, double model_spacing)
+{
+  if (!repeatsAPoint (first_copy))
+    return thinToSpacing (target, model_spacing);
+  const std::vector<int> distinct = firstCopies (first_copy);
+  ThinnedScan thinned = thinToSpacing (target (Eigen::all, distinct), model_spacing);
+  for (int& k : thinned.kept)
+    k = distinct[static_cast<std::size_t> (k)];
+  return thinned;
+}
+
+/** \a coarse, a result over the kept target points, with its target indices those of the
+ *  full scan (nothing was thinned but copies). */
+MatchResult
+indexFullTarget (MatchResult coarse, const std::vector<int>& kept)
+{
+  for (int& j : coarse.matches)
+    if (j != kNoMatch)
+      j = kept[static_cast<std::size_t> (j)];
+  for (int& j : coarse.candidates.targets)
+    j = kept[static_cast<std::size_t> (j)];
+  return coarse;
+}
+
+/** \a distinct, the result over the first copies of the source points, given to every
+ *  point: a copy takes its first copy's match, states, marginals and probability. */
+MatchResult
+liftToSourceCopies (const MatchResult& distinct, const std::vector<int>& source_first)
+{
+  std::vector<int> position (source_first.size (), -1);  // a first copy's node in distinct
+  int k = 0;
+  for (std::size_t i = 0; i < source_first.size (); ++i)
+    if (source_first[i] == static_cast<int> (i))
+      position[i] = k++;
+  MatchResult result;
+  result.map_probability.resize (static_cast<Eigen::Index> (source_first.size ()));
+  for (std::size_t i = 0; i < source_first.size (); ++i) {
+    const int node = position[static_cast<std::size_t> (source_first[i])];
+    result.matches.push_back (distinct.matches[node]);
+    const auto first = distinct.candidates.targets.begin () + distinct.candidates.offsets[node];
+    result.candidates.targets.insert (result.candidates.targets.end (), first,
+                                      first + distinct.candidates.count (node));
+    result.candidates.offsets.push_back (static_cast<int> (result.candidates.targets.size ()));
+    result.marginals.push_back (distinct.marginals[node]);
+    result.map_probability (static_cast<Eigen::Index> (i)) = distinct.map_probability (node);
+  }
+  result.T_target_source = distinct.T_target_source;
+  result.passes = distinct.passes;
   result.inlier_count = static_cast<int> (
       std::count_if (result.matches.begin (), result.matches.end (), [] (int j) { return j != kNoMatch; }));
   return result;
@@ -173,7 +232,8 @@ prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters&
     throw std::invalid_argument ("[pcl_crf::matching::prepareMatchingTarget] the target scan holds NaN or infinite points");
   MatchingTarget prepared;
   prepared.points = target;
-  prepared.thinned = thinToSpacing (target, parameters.training_beam_spacing);
+  prepared.first_copy = firstOfEqualPoints (target);
+  prepared.thinned = thinFirstCopies (target, prepared.first_copy, parameters.training_beam_spacing);
   prepared.prepared = prepareTarget (prepared.thinned.points, parameters.candidates);
   return prepared;
 }
@@ -183,11 +243,17 @@ matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const 
             const CrfMatchingModel& model)
 {
   checkInputs (model, source, guess);
+  const std::vector<int> source_first = firstOfEqualPoints (source);
+  if (repeatsAPoint (source_first))  // the first copies alone, lifted to the others
+    return liftToSourceCopies (matchScans (source (Eigen::all, firstCopies (source_first)), target, guess, model),
+                               source_first);
   ThinnedPair thinned;
   thinned.source = thinToSpacing (source, model.parameters.training_beam_spacing);
   thinned.target = target.thinned;
   if (!thinned.isThinned (source, target.points))
     return matchScans (source, target.prepared, guess, model);
+  if (!thinned.source.isThinned (source.cols ()) && target.thinned.factor == 1)  // only target copies dropped
+    return indexFullTarget (matchScans (source, target.prepared, guess, model), target.thinned.kept);
   thinned.anchors = thinnedAnchors (source, thinned.source);
   const MatchResult coarse = matchScans (thinned.source.points, target.prepared, guess, model);
   return liftMatchResult (coarse, source, target, thinned);

@@ -13,8 +13,9 @@ namespace pcl_crf {
  *  A laser measures one return per beam, so a point repeated exactly is no return of
  *  its own: a converter's placeholder for a beam without one, or a scan copied into
  *  itself. The estimators work on the first copies and give the others their results
- *  (joint::estimateJoint ()); tens of thousands of copies of one point otherwise made
- *  hundreds of clusters of it.
+ *  (joint::estimateJoint (), matching::matchScans () at the model's resolution); tens
+ *  of thousands of copies of one point otherwise made hundreds of clusters of it, and
+ *  copies between the returns of a scan changed a sixth of CRF-Matching's matches.
  *
  *  \code
  *  const std::vector<int> first = pcl_crf::firstOfEqualPoints (scan);

@@ -66,7 +66,8 @@ runPass (const ScanShape& source, const PreparedTarget& target, const MotionGues
          const StageModel& stage, const MatchingParameters& parameters, const ShapeNeighbours* earlier = nullptr);
 
 /** \brief CRF-Matching of a source scan against a prepared target scan, both at
- *  the resolution they come in (no thinning; see the MatchingTarget overload).
+ *  the resolution they come in (no thinning, and every point a state or a node even
+ *  when it repeats another: see the MatchingTarget overload).
  *
  *  Runs model.parameters.passes passes (stage k of the model in pass k, the last
  *  stage again when the model has fewer): pass 1 from the guess, pass 2 from
@@ -89,13 +90,16 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
             const CrfMatchingModel& model);
 
 /** \brief A target scan prepared for CRF-Matching at the resolution of the model:
- *  thinned to MatchingParameters::training_beam_spacing when it is about twice as fine
- *  or finer (thinToSpacing), then prepareTarget of the points kept. */
+ *  the first copy of every point (firstOfEqualPoints: a point repeated exactly is no
+ *  return of its own), thinned to MatchingParameters::training_beam_spacing when it is
+ *  about twice as fine or finer (thinToSpacing), then prepareTarget of the points kept. */
 struct MatchingTarget
 {
   /** the full target scan [m]. */
   Eigen::Matrix2Xd points;
-  /** the points the model sees. */
+  /** per full target point: the first point with its coordinates (firstOfEqualPoints). */
+  std::vector<int> first_copy;
+  /** the points the model sees: thinned.kept indexes the full scan (first copies only). */
   ThinnedScan thinned;
   /** prepareTarget of thinned.points. */
   PreparedTarget prepared;
@@ -111,6 +115,11 @@ prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters&
  *  (liftMatches, under the estimated motion). A point's candidates and marginals are
  *  then those of the kept point that stands for it (thinnedAnchors), each kept target
  *  point's index in the full scan, its MAP one replaced by the lifted match.
+ *
+ *  Points repeated exactly (firstOfEqualPoints; a converter's placeholder for beams
+ *  without a return, say) are matched once: the chain holds the first copy of every
+ *  source point, and a later copy takes its result; the states are first copies of
+ *  target points, and a match is always a target point's first copy.
  */
 MatchResult
 matchScans (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const MotionGuess& guess,
