@@ -165,6 +165,8 @@ isReturn (double range, double range_max)
   // come back up to a few ulp nearer; 1e-5 of the range is far above that and far
   // below any laser's resolution (0.3 mm at 30 m).
   constexpr double kRelativeRounding = 1e-5;
+  if (!(range > 0.0))  // the sensor's own position: a driver's 0 for a beam without a return
+    return false;
   return !(range_max > 0.0 && std::isfinite (range_max)) || range < range_max * (1.0 - kRelativeRounding);
 }
 

@@ -1,4 +1,4 @@
-// Points at the laser's maximum range are beams without a return: the evaluation methods
+// Points at the laser's maximum range or at the sensor are beams without a return: the evaluation methods
 // leave them out and predict them in the static world, unmatched.
 #include <pcl_crf/core/beam_order.h>
 #include <pcl_crf/evaluation/method.h>
@@ -31,11 +31,13 @@ atMaximumRange (double bearing, double range_max)
   return {x, y};
 }
 
-/** \a pair with a point at the maximum range inserted before every \a every-th point of
- *  both scans (a dataset that kept its beams without a return), labelled as the static
- *  world and unmatched; the true matches follow their target points. */
+/** \a pair with the point \a placeholder (bearing) returns for a bearing inserted before
+ *  every \a every-th point of both scans (a dataset that kept its beams without a
+ *  return), labelled as the static world and unmatched; the true matches follow their
+ *  target points. */
+template <typename Placeholder>
 ScanPair
-withMaximumRangePoints (const ScanPair& pair, int every)
+withPlaceholders (const ScanPair& pair, int every, Placeholder placeholder)
 {
   ScanPair out = pair;
   const int world = pair.staticObjectId ();
@@ -46,7 +48,7 @@ withMaximumRangePoints (const ScanPair& pair, int every)
     position.assign (static_cast<std::size_t> (scan.cols ()), -1);
     for (Eigen::Index i = 0; i < scan.cols (); ++i) {
       if (i % every == 0) {
-        kept.push_back (atMaximumRange (std::atan2 (scan (1, i), scan (0, i)) - 1e-4, pair.sensor.range_max));
+        kept.push_back (placeholder (std::atan2 (scan (1, i), scan (0, i)) - 1e-4));
         new_labels.push_back (world);
       }
       position[static_cast<std::size_t> (i)] = static_cast<int> (kept.size ());
@@ -68,6 +70,14 @@ withMaximumRangePoints (const ScanPair& pair, int every)
   }
   out.sensor.beam_count = static_cast<int> (std::max (out.source.cols (), out.target.cols ()));
   return out;
+}
+
+/** withPlaceholders () of points at the maximum range. */
+ScanPair
+withMaximumRangePoints (const ScanPair& pair, int every)
+{
+  return withPlaceholders (pair, every,
+                           [&pair] (double bearing) { return atMaximumRange (bearing, pair.sensor.range_max); });
 }
 
 TEST (NoReturnPoints, AReturnIsNearerThanTheMaximumRange)
@@ -124,13 +134,13 @@ TEST (NoReturnPoints, KeepReturnsRemapsLabelsAndTrueMatches)
   EXPECT_THROW (liftToAllPoints (reduced, returns), std::invalid_argument);
 }
 
-TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheMaximumRange)
+/** The joint model on \a padded, \a pair with points that are no returns inserted (as
+ *  withPlaceholders () does), answers as on \a pair: the method sees the pair's own
+ *  returns, so its answer on them is the answer without the extra points, and every
+ *  extra point is static and unmatched. */
+void
+expectTheJointModelToIgnoreTheExtraPoints (const ScanPair& pair, const ScanPair& padded)
 {
-  // Test pair 16 (a car moving 3.8 m) with a point at the maximum range before every
-  // fifth point: the method sees the pair's own returns, so its answer on them is the
-  // answer without the extra points, and every extra point is static and unmatched.
-  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
-  const ScanPair padded = withMaximumRangePoints (pair, 5);
   ASSERT_GT (padded.source.cols (), pair.source.cols () + 50);
   validateScanPair (padded, "padded pair_0016");
   const auto method = createEvaluationMethod ("joint");
@@ -161,6 +171,26 @@ TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheMaximumRange)
     ++k;
   }
   EXPECT_EQ (k, static_cast<std::size_t> (pair.source.cols ()));
+}
+
+TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheMaximumRange)
+{
+  // Test pair 16 (a car moving 3.8 m) with a point at the maximum range before every
+  // fifth point.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  expectTheJointModelToIgnoreTheExtraPoints (pair, withMaximumRangePoints (pair, 5));
+}
+
+TEST (NoReturnPoints, TheJointModelIgnoresPointsAtTheSensor)
+{
+  // The same with (0, 0) before every fifth point (a range of 0 converted to x, y):
+  // the first copy of (0, 0) was a link of both chains and changed the answer.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  EXPECT_FALSE (isReturn (0.0, pair.sensor.range_max));
+  EXPECT_FALSE (isReturn (0.0, 0.0));  // without a maximum range as well
+  EXPECT_TRUE (isReturn (1e-3, pair.sensor.range_max));
+  expectTheJointModelToIgnoreTheExtraPoints (pair,
+                                             withPlaceholders (pair, 5, [] (double) { return Eigen::Vector2d::Zero (); }));
 }
 
 /** \a pair with its scans' points in the orders \a source_order and \a target_order
@@ -282,7 +312,7 @@ TEST (NoReturnPoints, RepeatedPointsAreLeftOutOnceTheirFirstIsKept)
   pair.target << 1.0, 1.0, 3.0,  //
       1.0, 1.0, 3.0;
   const PairReturns returns = keepReturns (pair);
-  EXPECT_EQ (returns.source_index, (std::vector<int>{0, 1, 3}));
+  EXPECT_EQ (returns.source_index, (std::vector<int>{0, 3}));  // (0, 0) is the sensor: no return
   EXPECT_EQ (returns.target_index, (std::vector<int>{0, 2}));
   // Through an evaluation method: the copies are left unmatched, and ICP runs on the
   // distinct points in milliseconds.

@@ -10,11 +10,13 @@
 namespace pcl_crf {
 
 /** \brief Whether a point at \a range [m] is a return of a laser whose maximum range
- *  is \a range_max [m]: nearer than it (ROS's sensor_msgs/LaserScan convention, which
- *  the log readers follow; a laser reports range_max or more for a beam without one),
- *  by more than 1e-5 of it (a point stored at range_max in single precision may read
- *  back a few ulp nearer). Every point is a return when range_max is not a positive
- *  finite number. */
+ *  is \a range_max [m]: farther than 0 (a point at the sensor itself is no surface:
+ *  drivers report a range of 0 for a beam without a return, which a conversion to x, y
+ *  puts at the origin) and nearer than range_max (ROS's sensor_msgs/LaserScan
+ *  convention, which the log readers follow; a laser reports range_max or more for a
+ *  beam without one), by more than 1e-5 of it (a point stored at range_max in single
+ *  precision may read back a few ulp nearer). Without a positive finite range_max every
+ *  point but the origin is a return. */
 bool
 isReturn (double range, double range_max);
 
@@ -25,7 +27,8 @@ isReturn (double range, double range_max);
  *
  *  A dataset should leave beams without a return out (data/README.md); one converted
  *  with them kept as points at the maximum range would otherwise show every method an
- *  arc that moves with the sensor. A point at the exact coordinates of a return before
+ *  arc that moves with the sensor, and points at the origin (a range of 0) would be
+ *  links of every chain. A point at the exact coordinates of a return before
  *  it in beam order (beamOrder (), so a scan listed either way round keeps the same
  *  copy; a converter's placeholder for a beam without a return, say) is left out too: it is no return of another beam, and tens of thousands of them made
  *  every kd-tree search visit them all (exact ties at distance 0 prune nothing: a
