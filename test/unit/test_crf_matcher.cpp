@@ -5,6 +5,7 @@
 #include <pcl_crf/simulation/scan_pair_simulator.h>
 
 #include "synthetic_scene.h"
+#include "hokuyo_pairs.h"
 
 #include <pcl/registration/icp.h>
 #include <pcl/registration/transformation_estimation_2D.h>
@@ -447,11 +448,7 @@ TEST (CrfMatcherOnAFinerScan, MatchesThinnedLikeMatchScansWithCloudIndicesMapped
   // A Hokuyo-like pair (1081 beams over 270°, 0.25° apart) with NaN points in both
   // clouds: the adapter thins the valid points to the model's 0.5° as matchScans does,
   // and maps the lifted matches back to cloud indices.
-  pcl_crf::simulation::SimulatorConfig config;
-  config.seed = 5;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 1.5 * M_PI;
-  const pcl_crf::ScanPair pair = pcl_crf::simulation::ScanPairSimulator (config).simulate (0);
+  const pcl_crf::ScanPair pair = pcl_crf::test::hokuyoPair (5, 0);
   // The simulator's clouds hold floats; the adapter sees them as floats too.
   const Eigen::Matrix2Xd source = pair.source.cast<float> ().cast<double> ();
   const Eigen::Matrix2Xd target = pair.target.cast<float> ().cast<double> ();

@@ -14,6 +14,8 @@
 #include <pcl_crf/metrics/pair_scores.h>
 #include <pcl_crf/simulation/scan_pair_simulator.h>
 
+#include "hokuyo_pairs.h"
+
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -478,11 +480,7 @@ TEST (JointEstimation, ASlidSegmentNeedsAsManyBearingsSeenThroughOnAFinerScan)
   // through near its corner under the static motion, one beam of the training scans, and
   // a 0.08 m slide of the building (154 points) removed them. Asking twice the points
   // on a scan twice as fine keeps the static world whole.
-  simulation::SimulatorConfig config;
-  config.seed = 3003;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 270.0 * M_PI / 180.0;
-  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (8);
+  const ScanPair pair = test::hokuyoPair (3003, 8);
   const auto worldClusters = [&] (const joint::JointResult& r) {
     std::vector<int> clusters;
     for (std::size_t i = 0; i < pair.source_object.size (); ++i)
@@ -529,11 +527,7 @@ TEST (JointEstimation, FinerScansAreEstimatedAtTheResolutionItWasTrainedAt)
   // README's 1081-beam table thinning still detects motion better (0.899 and V 0.540
   // against 0.880 and 0.478 on every beam, association 0.803 against 0.807) in 2.4
   // times less time, so it stays; here it must not fall far behind.
-  simulation::SimulatorConfig config;
-  config.seed = 13;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 1.5 * M_PI;
-  const std::vector<ScanPair> pairs = simulation::ScanPairSimulator (config).simulateDataset (0, 6);
+  const std::vector<ScanPair> pairs = test::hokuyoPairs (13, 6);
   joint::JointModel at_full_resolution = shippedModel ();
   at_full_resolution.matcher.parameters.training_beam_spacing = 0.0;
   double thinned = 0.0, full = 0.0, thinned_detection = 0.0, full_detection = 0.0, thinned_v = 0.0, full_v = 0.0;
@@ -1140,11 +1134,7 @@ TEST (JointCRFEstimator, GivesAFinerCloudTheThinnedEstimateWithCloudIndices)
   // A 1081-beam pair over 270° with a NaN point: the adapter's clusters and
   // correspondences are estimateJoint's on the valid points (thinned and lifted),
   // mapped to cloud indices.
-  simulation::SimulatorConfig config;
-  config.seed = 21;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 1.5 * M_PI;
-  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (0);
+  const ScanPair pair = test::hokuyoPair (21, 0);
   ASSERT_LT (thinToSpacing (pair.source, shippedModel ().matcher.parameters.training_beam_spacing).kept.size (),
              static_cast<std::size_t> (pair.source.cols ()));  // it is thinned
   pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> estimator;

@@ -11,6 +11,7 @@
 #include <pcl_crf/simulation/scan_pair_simulator.h>
 
 #include "synthetic_scene.h"
+#include "hokuyo_pairs.h"
 
 #include <gtest/gtest.h>
 
@@ -33,17 +34,6 @@ simulatedPairs (std::uint64_t seed, std::size_t count)
 {
   pcl_crf::simulation::SimulatorConfig config;
   config.seed = seed;
-  return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
-}
-
-/** Simulated street pairs seen by a Hokuyo-like laser: 1081 beams over 270° (0.25° apart). */
-std::vector<pcl_crf::ScanPair>
-hokuyoPairs (std::uint64_t seed, std::size_t count)
-{
-  pcl_crf::simulation::SimulatorConfig config;
-  config.seed = seed;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 1.5 * M_PI;
   return pcl_crf::simulation::ScanPairSimulator (config).simulateDataset (0, count);
 }
 
@@ -369,7 +359,7 @@ TEST_F (MatchingModelTest, FinerScansAreMatchedAtTheResolutionItWasTrainedAt)
   m::CrfMatchingModel at_full_resolution = *model_;
   at_full_resolution.parameters.training_beam_spacing = 0.0;
   double thinned = 0.0, full = 0.0;
-  const auto pairs = hokuyoPairs (13, 8);
+  const auto pairs = pcl_crf::test::hokuyoPairs (13, 8);
   for (const auto& pair : pairs) {
     const m::MotionGuess guess = m::MotionGuess::fromOdometry (pair.odometry);
     const m::MatchResult result = m::matchScans (pair.source, pair.target, guess, *model_);

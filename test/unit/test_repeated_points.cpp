@@ -5,11 +5,11 @@
 #include <pcl_crf/joint/joint_model.h>
 #include <pcl_crf/matching/matching_model.h>
 #include <pcl_crf/matching/scan_matching.h>
-#include <pcl_crf/simulation/scan_pair_simulator.h>
 
-#include <cmath>
 
 #include <gtest/gtest.h>
+
+#include "hokuyo_pairs.h"
 
 #include <algorithm>
 #include <string>
@@ -185,11 +185,7 @@ TEST (CRFMatching, RepeatedPointsOfThinnedScansTakeTheResultOfTheirFirstCopy)
 {
   // A 1081-beam pair over 270°: thinned to the model's 0.5°, matched, and lifted back;
   // a lifted match that lands on a later copy names the first.
-  simulation::SimulatorConfig config;
-  config.seed = 5;
-  config.laser.beam_count = 1081;
-  config.laser.field_of_view = 1.5 * M_PI;
-  const ScanPair pair = simulation::ScanPairSimulator (config).simulate (0);
+  const ScanPair pair = test::hokuyoPair (5, 0);
   ASSERT_LT (thinToSpacing (pair.source, matchingModel ().parameters.training_beam_spacing).kept.size (),
              static_cast<std::size_t> (pair.source.cols ()));  // it is thinned
   expectCopiesMatchedAsTheirFirstCopy (pair);
