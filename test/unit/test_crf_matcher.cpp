@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -219,6 +220,42 @@ TYPED_TEST (CrfMatcherTest, NanPointsAreSkippedAndIndicesMappedBack)
   EXPECT_TRUE (this->matcher_.getMarginals ()[5].size () == 0);
   for (const auto index : this->matcher_.getOutliers ())
     EXPECT_NE (index, 5);
+}
+
+TYPED_TEST (CrfMatcherTest, RepeatedPointsAreMatchedAsTheirFirstCopy)
+{
+  // Copies of source points 3 and 10 and of target points 7 and 20 appended to the
+  // clouds: the original points keep their correspondences, a source copy takes its first
+  // copy's, and no correspondence or candidate names a target copy.
+  pcl::Correspondences plain;
+  this->matcher_.determineCorrespondences (plain);
+  auto source = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);
+  auto target = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->target_);
+  const int n = static_cast<int> (source->size ()), m = static_cast<int> (target->size ());
+  source->push_back ((*source)[3]);
+  source->push_back ((*source)[10]);
+  target->push_back ((*target)[7]);
+  target->push_back ((*target)[20]);
+  this->matcher_.setInputSource (source);
+  this->matcher_.setInputTarget (target);
+  pcl::Correspondences with_copies;
+  this->matcher_.determineCorrespondences (with_copies);
+  ASSERT_EQ (with_copies.size (), plain.size () + 2);  // points 3 and 10 are matched, so are their copies
+  std::map<int, int> match_of;
+  for (const pcl::Correspondence& c : with_copies) {
+    EXPECT_LT (c.index_match, m) << c.index_query;
+    match_of[c.index_query] = c.index_match;
+  }
+  for (const pcl::Correspondence& c : plain)
+    EXPECT_EQ (match_of.at (c.index_query), c.index_match) << c.index_query;
+  EXPECT_EQ (match_of.at (n), match_of.at (3));
+  EXPECT_EQ (match_of.at (n + 1), match_of.at (10));
+  for (const pcl::Indices& states : this->matcher_.getCandidates ())
+    for (const auto j : states)
+      EXPECT_LT (j, m);
+  pcl::Correspondences reciprocal;
+  this->matcher_.determineReciprocalCorrespondences (reciprocal);
+  EXPECT_GT (reciprocal.size (), 0.9 * plain.size ());
 }
 
 TYPED_TEST (CrfMatcherTest, FarPointsAreOutliers)
