@@ -32,8 +32,9 @@ namespace pcl_crf {
  *  through pcl::VoxelGrid, say). setIndices () and
  *  setIndicesTarget () restrict the source points and the candidate target points. Points
  *  with a NaN x or y are skipped, and a point repeated exactly (pcl_crf::firstOfEqualPoints)
- *  is matched as its first copy, the only copy a candidate or match names; every index
- *  reported refers to the input clouds. A trained model is required (setModel / loadModel; pcl_crf_train
+ *  is matched as the first of its copies along the chain (in beam order, so the last in
+ *  the cloud when it is listed clockwise), the only copy a candidate or match names; every
+ *  index reported refers to the input clouds. A trained model is required (setModel / loadModel; pcl_crf_train
  *  writes one, data/models/crf-matching.model is the default).
  *
  *  determineCorrespondences returns the MAP association without the outliers, by source

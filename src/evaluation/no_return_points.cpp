@@ -148,7 +148,7 @@ private:
     if (returns.source_index.empty () || returns.target_index.empty ())
       throw std::invalid_argument ("pair '" + pair.name + "': every point of its " +
                                    (returns.source_index.empty () ? "source" : "target") +
-                                   " scan lies at or beyond the sensor's maximum range (" +
+                                   " scan lies at the sensor (0, 0) or at or beyond the sensor's maximum range (" +
                                    std::to_string (pair.sensor.range_max) + " m), so it holds no return");
     return returns;
   }

@@ -95,6 +95,29 @@ appendLiftedStates (const MatchResult& coarse, const ThinnedScan& target, int an
                                                           static_cast<Eigen::Index> (probabilities.size ())));
 }
 
+/** liftMatches () onto the first copies of the target points alone (a later copy inside
+ *  a kept point's span would stand for the point it repeats there), as full indices. */
+std::vector<int>
+liftToFirstCopies (const Eigen::Matrix2Xd& source, const MatchingTarget& target, const ThinnedPair& thinned,
+                   const std::vector<int>& coarse_matches, const std::vector<int>& groups, const Rigid2d& motion)
+{
+  if (!repeatsAPoint (target.first_copy))
+    return liftMatches (source, target.points, thinned, coarse_matches, groups, {motion});
+  const std::vector<int> distinct = firstCopies (target.first_copy);
+  std::vector<int> position (target.first_copy.size (), -1);  // a first copy's column in distinct
+  for (std::size_t k = 0; k < distinct.size (); ++k)
+    position[static_cast<std::size_t> (distinct[k])] = static_cast<int> (k);
+  ThinnedPair on_distinct = thinned;
+  for (int& k : on_distinct.target.kept)
+    k = position[static_cast<std::size_t> (k)];
+  std::vector<int> matches =
+      liftMatches (source, target.points (Eigen::all, distinct), on_distinct, coarse_matches, groups, {motion});
+  for (int& j : matches)
+    if (j != kNoMatch)
+      j = distinct[static_cast<std::size_t> (j)];
+  return matches;
+}
+
 /** A result on the thinned scans lifted to the full ones (see matchScans). */
 MatchResult
 liftMatchResult (const MatchResult& coarse, const Eigen::Matrix2Xd& source, const MatchingTarget& target,
@@ -104,10 +127,7 @@ liftMatchResult (const MatchResult& coarse, const Eigen::Matrix2Xd& source, cons
   for (std::size_t k = 0; k < groups.size (); ++k)
     groups[k] = coarse.matches[k] == kNoMatch ? -1 : 0;
   MatchResult result;
-  result.matches = liftMatches (source, target.points, thinned, coarse.matches, groups, {coarse.T_target_source});
-  for (int& j : result.matches)  // a lifted match may be a later copy of its target point
-    if (j != kNoMatch)
-      j = target.first_copy[static_cast<std::size_t> (j)];
+  result.matches = liftToFirstCopies (source, target, thinned, coarse.matches, groups, coarse.T_target_source);
   result.map_probability.resize (source.cols ());
   for (int i = 0; i < static_cast<int> (source.cols ()); ++i) {
     const int anchor = thinned.anchors[i];

@@ -18,6 +18,7 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <utility>
 
 namespace {
 
@@ -253,9 +254,19 @@ TYPED_TEST (CrfMatcherTest, RepeatedPointsAreMatchedAsTheirFirstCopy)
   for (const pcl::Indices& states : this->matcher_.getCandidates ())
     for (const auto j : states)
       EXPECT_LT (j, m);
+  // A copy is reciprocal when its first copy is (the backward chain names first copies).
   pcl::Correspondences reciprocal;
   this->matcher_.determineReciprocalCorrespondences (reciprocal);
   EXPECT_GT (reciprocal.size (), 0.9 * plain.size ());
+  std::map<int, int> reciprocal_match;
+  for (const pcl::Correspondence& c : reciprocal)
+    reciprocal_match[c.index_query] = c.index_match;
+  for (const auto& [copy, first] : {std::pair<int, int>{n, 3}, {n + 1, 10}}) {
+    EXPECT_EQ (reciprocal_match.count (copy), reciprocal_match.count (first)) << copy;
+    if (reciprocal_match.count (first) > 0)
+      EXPECT_EQ (reciprocal_match.at (copy), reciprocal_match.at (first)) << copy;
+  }
+  EXPECT_GT (reciprocal_match.count (3) + reciprocal_match.count (10), 0u);  // the check above bites
 }
 
 TYPED_TEST (CrfMatcherTest, FarPointsAreOutliers)

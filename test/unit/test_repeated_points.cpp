@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -65,15 +66,16 @@ withRepeatedReturns (const Eigen::Matrix2Xd& scan, int every, std::vector<int>& 
   return out;
 }
 
-/** CRF-Matching of \a pair with a copy of every 7th source and every 5th target point
- *  inserted after it equals CRF-Matching of the pair, every copy taking its first
- *  copy's result and every match and state naming a first copy. */
+/** CRF-Matching of \a pair with a copy of every \a every_source -th source and every
+ *  \a every_target -th target point inserted after it equals CRF-Matching of the pair,
+ *  every copy taking its first copy's result and every match and state naming a first
+ *  copy. */
 void
-expectCopiesMatchedAsTheirFirstCopy (const ScanPair& pair)
+expectCopiesMatchedAsTheirFirstCopy (const ScanPair& pair, int every_source, int every_target)
 {
   std::vector<int> in_source, in_target;
-  const Eigen::Matrix2Xd source = withRepeatedReturns (pair.source, 7, in_source);
-  const Eigen::Matrix2Xd target = withRepeatedReturns (pair.target, 5, in_target);
+  const Eigen::Matrix2Xd source = withRepeatedReturns (pair.source, every_source, in_source);
+  const Eigen::Matrix2Xd target = withRepeatedReturns (pair.target, every_target, in_target);
   const matching::MotionGuess guess = matching::MotionGuess::fromOdometry (pair.odometry);
   const matching::MatchResult plain = matching::matchScans (pair.source, pair.target, guess, matchingModel ());
   const matching::MatchResult r = matching::matchScans (source, target, guess, matchingModel ());
@@ -178,17 +180,22 @@ TEST (CRFMatching, RepeatedPointsTakeTheResultOfTheirFirstCopy)
   // changed on the test split (copies of (0, 0) between the returns): they were nodes
   // of the chain and states of their own. Test pair 16 (a car 3.8 m against the world).
   expectCopiesMatchedAsTheirFirstCopy (
-      loadScanPair (std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test/pair_0016"));
+      loadScanPair (std::string (PCL_CRF_SOURCE_DIR) + "/data/default/test/pair_0016"), 7, 5);
 }
 
 TEST (CRFMatching, RepeatedPointsOfThinnedScansTakeTheResultOfTheirFirstCopy)
 {
-  // A 1081-beam pair over 270°: thinned to the model's 0.5°, matched, and lifted back;
-  // a lifted match that lands on a later copy names the first.
-  const ScanPair pair = test::hokuyoPair (5, 0);
-  ASSERT_LT (thinToSpacing (pair.source, matchingModel ().parameters.training_beam_spacing).kept.size (),
-             static_cast<std::size_t> (pair.source.cols ()));  // it is thinned
-  expectCopiesMatchedAsTheirFirstCopy (pair);
+  // A 1081-beam pair over 270°: thinned to the model's 0.5°, matched, and lifted back
+  // onto the first copies. Every target point repeated: a copy of a kept point lies in
+  // the span of the next kept point, where lifting onto the full target could pick it
+  // and name the point it repeats (7 of 1081 matches on pair (3, 1) changed so).
+  for (const auto& [seed, index] : {std::pair<int, int>{5, 0}, {3, 1}}) {
+    SCOPED_TRACE (seed);
+    const ScanPair pair = test::hokuyoPair (static_cast<std::uint64_t> (seed), static_cast<std::size_t> (index));
+    ASSERT_LT (thinToSpacing (pair.source, matchingModel ().parameters.training_beam_spacing).kept.size (),
+               static_cast<std::size_t> (pair.source.cols ()));  // it is thinned
+    expectCopiesMatchedAsTheirFirstCopy (pair, 7, 1);
+  }
 }
 
 TEST (CRFMatching, CopiesOfOnePointAreMatchedAsOnePoint)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
 
 namespace pcl_crf {
 
@@ -216,11 +217,13 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences
   if (forward.empty ())
     return;
   matching::MatchResult backward;
+  std::vector<int> source_first;  // per source chain position: its first copy, which backward names
   try {  // target → source with the inverse guess (no prior)
     matching::MotionGuess inverse;
     inverse.T_target_source = guess_.T_target_source.inverse ();
-    backward = matching::matchScans (target_prepared_->points,
-                                     matching::prepareMatchingTarget (source_xy_, model_.parameters), inverse, model_);
+    matching::MatchingTarget source_as_target = matching::prepareMatchingTarget (source_xy_, model_.parameters);
+    source_first = std::move (source_as_target.first_copy);
+    backward = matching::matchScans (target_prepared_->points, source_as_target, inverse, model_);
   }
   catch (const std::exception& error) {
     PCL_ERROR ("[pcl_crf::%s::determineReciprocalCorrespondences] %s\n", getClassName ().c_str (), error.what ());
@@ -229,7 +232,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::determineReciprocalCorrespondences
   // Both directions in the chains' positions (k source, j target), then named by the clouds' indices.
   pcl::Correspondence c;
   for (std::size_t k = 0; k < source_index_.size (); ++k)
-    if (correspondenceOf (k, max_distance, c) && backward.matches[result_.matches[k]] == static_cast<int> (k))
+    if (correspondenceOf (k, max_distance, c) && backward.matches[result_.matches[k]] == source_first[k])
       correspondences.push_back (c);
   detail::sortByQuery (correspondences);
 }
