@@ -74,6 +74,24 @@ sortByQuery (pcl::Correspondences& correspondences)
              [] (const pcl::Correspondence& a, const pcl::Correspondence& b) { return a.index_query < b.index_query; });
 }
 
+/** \brief \a xy without its points at the sensor itself, (0, 0) (−0 too), and \a kept
+ *  without theirs: a range of 0 is what drivers report for a beam without a return, so
+ *  such a point is no surface (as pcl_crf::isReturn () says for the datasets). */
+inline Eigen::Matrix2Xd
+dropSensorOrigin (Eigen::Matrix2Xd xy, std::vector<int>& kept)
+{
+  Eigen::Index n = 0;
+  for (Eigen::Index k = 0; k < xy.cols (); ++k)
+    if (xy (0, k) != 0.0 || xy (1, k) != 0.0) {
+      xy.col (n) = xy.col (k);
+      kept[static_cast<std::size_t> (n)] = kept[static_cast<std::size_t> (k)];
+      ++n;
+    }
+  xy.conservativeResize (2, n);
+  kept.resize (static_cast<std::size_t> (n));
+  return xy;
+}
+
 /** \brief \a xy with its columns, and \a kept with them, in beam order counter-clockwise
  *  (beamOrder ()): unchanged when they are in one. */
 inline Eigen::Matrix2Xd
@@ -94,22 +112,23 @@ putInBeamOrder (Eigen::Matrix2Xd xy, std::vector<int>& kept)
 
 }  // namespace detail
 
-/** \brief toMatrix2X () of a laser scan for the CRF chains: its columns in beam order
- *  (beamOrder (): the cloud's order when that is one, counter-clockwise; backwards when
- *  it goes clockwise; a cloud through pcl::VoxelGrid, a kd-tree or a shuffle is sorted
- *  by bearing). \a kept receives the cloud index of every
- *  column, so that results map back to the user's points. */
+/** \brief toMatrix2X () of a laser scan for the CRF chains: its returns (points at the
+ *  sensor itself, x = y = 0, are left out as well: a range of 0 is what drivers report
+ *  for a beam without a return) in beam order (beamOrder (): the cloud's order when
+ *  that is one, counter-clockwise; backwards when it goes clockwise; a cloud through
+ *  pcl::VoxelGrid, a kd-tree or a shuffle is sorted by bearing). \a kept receives the
+ *  cloud index of every column, so that results map back to the user's points. */
 template <typename PointT> Eigen::Matrix2Xd
 scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, std::vector<int>& kept)
 {
-  return detail::putInBeamOrder (toMatrix2X (cloud, &kept), kept);
+  return detail::putInBeamOrder (detail::dropSensorOrigin (toMatrix2X (cloud, &kept), kept), kept);
 }
 
 /** \brief scanToMatrix2X () of the points of \a cloud at \a indices. */
 template <typename PointT, typename Index> Eigen::Matrix2Xd
 scanToMatrix2X (const pcl::PointCloud<PointT>& cloud, const std::vector<Index>& indices, std::vector<int>& kept)
 {
-  return detail::putInBeamOrder (toMatrix2X (cloud, indices, &kept), kept);
+  return detail::putInBeamOrder (detail::dropSensorOrigin (toMatrix2X (cloud, indices, &kept), kept), kept);
 }
 
 /** \brief The position in \a indices of the first index outside a cloud of \a size

@@ -28,7 +28,9 @@ namespace pcl_crf {
  *  frame (the CRF is a chain along the source scan: in the points' order when it is a
  *  beam order counter-clockwise, backwards when clockwise, else sorted by bearing,
  *  pcl_crf::beamOrder ()), and point correspondences (index_query = source point, index_match = target point;
- *  from any association method). Only x and y are used. Output, like
+ *  from any association method). Only x and y are used; a source point at the sensor
+ *  itself (x = y = 0, a driver's range of 0 for a beam without a return) is left out of
+ *  the chain, as a point outside setIndices () is. Output, like
  *  pcl::EuclideanClusterExtraction: clusters of source point indices, largest first,
  *  plus per cluster its rigid motion T_target_source (maps source-frame points into the
  *  target frame), its size and whether it is the static world, and per source point

@@ -31,7 +31,8 @@ namespace pcl_crf {
  *  they go clockwise, else the points sorted by bearing (pcl_crf::beamOrder (): a cloud
  *  through pcl::VoxelGrid, say). setIndices () and
  *  setIndicesTarget () restrict the source points and the candidate target points. Points
- *  with a NaN x or y are skipped, and a point repeated exactly (pcl_crf::firstOfEqualPoints)
+ *  with a NaN x or y, and points at the sensor itself (x = y = 0, a driver's range of 0 for
+ *  a beam without a return), are skipped, and a point repeated exactly (pcl_crf::firstOfEqualPoints)
  *  is matched as the first of its copies along the chain (in beam order, so the last in
  *  the cloud when it is listed clockwise), the only copy a candidate or match names; every
  *  index reported refers to the input clouds. A trained model is required (setModel / loadModel; pcl_crf_train

@@ -22,7 +22,8 @@ namespace pcl_crf {
  *  target frame, the inverse of the sensor's own motion), and hasConverged() is true
  *  when a static cluster associated with at least three target points was found (fewer
  *  do not determine the sensor's motion: a target that does not overlap the source, or
- *  a scan far from the guess, gave back the guess unchanged as the estimate). Points with non-finite x or y are skipped (all
+ *  a scan far from the guess, gave back the guess unchanged as the estimate). Points with non-finite x or y, and points at
+ *  the sensor itself (x = y = 0, a driver's range of 0 for a beam without a return), are skipped (all
  *  indices refer to the input clouds). The guess given to align() is the odometry
  *  (T_target_source) unless setOdometry() was called.
  *
@@ -144,8 +145,8 @@ public:
 
   /** \brief Everything the last align() found, in the core's frame-explicit form: its
    *  source point k is the source cloud's point getResultSourceIndices ()[k], its
-   *  target point j the target cloud's getResultTargetIndices ()[j] (the finite points,
-   *  in beam order). */
+   *  target point j the target cloud's getResultTargetIndices ()[j] (the finite points
+   *  off the sensor, in beam order). */
   const joint::JointResult&
   getResult () const { return result_; }
 

@@ -161,6 +161,31 @@ TYPED_TEST (CRFClustererTest, AShuffledSourceIsChainedInBeamOrder)
   }
 }
 
+TYPED_TEST (CRFClustererTest, ASourcePointAtTheSensorIsLeftOut)
+{
+  // (0, 0) appended to the source, with a correspondence (a driver's range of 0 for a beam
+  // without a return): left out of the chain, like a point outside the indices; the
+  // clusters and motions of the other points stay.
+  this->clusterer.extract (this->clusters);
+  const auto clusters = this->clusters;
+  const auto transformations = this->clusterer.getTransformations ();
+  typename pcl::PointCloud<TypeParam>::Ptr source (new pcl::PointCloud<TypeParam> (*this->scene.source));
+  TypeParam origin;
+  origin.x = origin.y = origin.z = 0.0f;
+  source->push_back (origin);
+  const auto at_sensor = static_cast<int> (source->size ()) - 1;
+  pcl::CorrespondencesPtr correspondences (new pcl::Correspondences (*this->scene.correspondences));
+  correspondences->emplace_back (at_sensor, 0, 0.0f);
+  this->clusterer.setInputSource (source);
+  this->clusterer.setCorrespondences (correspondences);
+  this->clusterer.extract (this->clusters);
+  ASSERT_EQ (this->clusters.size (), clusters.size ());
+  for (std::size_t c = 0; c < clusters.size (); ++c) {
+    EXPECT_EQ (this->clusters[c].indices, clusters[c].indices) << c;
+    EXPECT_EQ (this->clusterer.getTransformations ()[c], transformations[c]) << c;
+  }
+}
+
 TYPED_TEST (CRFClustererTest, WithoutOdometryTheLargestClusterIsStatic)
 {
   this->clusterer.clearOdometry ();

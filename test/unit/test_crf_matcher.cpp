@@ -269,6 +269,39 @@ TYPED_TEST (CrfMatcherTest, RepeatedPointsAreMatchedAsTheirFirstCopy)
   EXPECT_GT (reciprocal_match.count (3) + reciprocal_match.count (10), 0u);  // the check above bites
 }
 
+TYPED_TEST (CrfMatcherTest, PointsAtTheSensorAreSkipped)
+{
+  // (0, 0) appended to both clouds, twice (a driver's range of 0 for a beam without a
+  // return): the other points keep their correspondences, and nothing names those points.
+  pcl::Correspondences plain;
+  this->matcher_.determineCorrespondences (plain);
+  auto source = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);
+  auto target = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->target_);
+  const int n = static_cast<int> (source->size ()), m = static_cast<int> (target->size ());
+  TypeParam origin;
+  origin.x = origin.y = origin.z = 0.0f;
+  for (int copy = 0; copy < 2; ++copy) {
+    source->push_back (origin);
+    target->push_back (origin);
+  }
+  this->matcher_.setInputSource (source);
+  this->matcher_.setInputTarget (target);
+  pcl::Correspondences padded;
+  this->matcher_.determineCorrespondences (padded);
+  ASSERT_EQ (padded.size (), plain.size ());
+  for (std::size_t c = 0; c < plain.size (); ++c) {
+    EXPECT_EQ (padded[c].index_query, plain[c].index_query);
+    EXPECT_EQ (padded[c].index_match, plain[c].index_match);
+  }
+  for (int i = n; i < n + 2; ++i)
+    EXPECT_TRUE (this->matcher_.getCandidates ()[static_cast<std::size_t> (i)].empty ()) << i;
+  for (const pcl::Indices& states : this->matcher_.getCandidates ())
+    for (const auto j : states)
+      EXPECT_LT (j, m);
+  for (const auto i : this->matcher_.getOutliers ())
+    EXPECT_LT (i, n);
+}
+
 TYPED_TEST (CrfMatcherTest, FarPointsAreOutliers)
 {
   auto source = pcl::make_shared<pcl::PointCloud<TypeParam>> (*this->source_);

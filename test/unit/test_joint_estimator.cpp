@@ -987,6 +987,62 @@ expectChainedInBeamOrder (bool shuffle)
     EXPECT_EQ (source_order[reordered.getResultSourceIndices ()[k]], ordered.getResultSourceIndices ()[k]);
 }
 
+TEST (JointCRFEstimator, SkipsPointsAtTheSensor)
+{
+  // Test pair 16 with (0, 0, 0) before every fifth point of both clouds (a driver's range
+  // of 0 for a beam without a return, converted to x, y): the same estimate as without
+  // them, and no cluster, outlier or correspondence names one.
+  const ScanPair pair = loadScanPair (kTestDir + "pair_0016");
+  const auto source = toCloud (pair.source), target = toCloud (pair.target);
+  const auto withOrigins = [] (const pcl::PointCloud<pcl::PointXYZ>& cloud, std::vector<int>& position) {
+    auto out = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+    position.clear ();
+    for (std::size_t i = 0; i < cloud.size (); ++i) {
+      if (i % 5 == 0)
+        out->push_back (pcl::PointXYZ (0.0f, 0.0f, 0.0f));
+      position.push_back (static_cast<int> (out->size ()));
+      out->push_back (cloud[i]);
+    }
+    return out;
+  };
+  std::vector<int> in_source, in_target;
+  const auto padded_source = withOrigins (*source, in_source), padded_target = withOrigins (*target, in_target);
+  const Eigen::Matrix4f odometry = toMatrix4<float> (pair.odometry.T_source_target);
+  pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ> plain, padded;
+  for (auto* estimator : {&plain, &padded}) {
+    estimator->setModel (shippedModel ());
+    estimator->setOdometry (odometry, pair.odometry.covariance);
+  }
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  plain.setInputSource (source);
+  plain.setInputTarget (target);
+  plain.align (aligned);
+  padded.setInputSource (padded_source);
+  padded.setInputTarget (padded_target);
+  padded.align (aligned);
+  ASSERT_TRUE (plain.hasConverged ());
+  ASSERT_TRUE (padded.hasConverged ());
+  EXPECT_EQ (padded.getFinalTransformation (), plain.getFinalTransformation ());
+  ASSERT_EQ (padded.getCorrespondences ().size (), plain.getCorrespondences ().size ());
+  for (std::size_t c = 0; c < plain.getCorrespondences ().size (); ++c) {
+    const pcl::Correspondence& a = plain.getCorrespondences ()[c];
+    const pcl::Correspondence& b = padded.getCorrespondences ()[c];
+    EXPECT_EQ (b.index_query, in_source[static_cast<std::size_t> (a.index_query)]);
+    EXPECT_EQ (b.index_match, in_target[static_cast<std::size_t> (a.index_match)]);
+  }
+  ASSERT_EQ (padded.getClusters ().size (), plain.getClusters ().size ());
+  for (std::size_t l = 0; l < plain.getClusters ().size (); ++l) {
+    std::vector<int> mapped;
+    for (const int i : plain.getClusters ()[l].indices)
+      mapped.push_back (in_source[static_cast<std::size_t> (i)]);
+    EXPECT_EQ (padded.getClusters ()[l].indices, mapped) << "cluster " << l;
+  }
+  std::vector<int> outliers;
+  for (const auto i : plain.getOutliers ())
+    outliers.push_back (in_source[static_cast<std::size_t> (i)]);
+  EXPECT_EQ (std::vector<int> (padded.getOutliers ().begin (), padded.getOutliers ().end ()), outliers);
+}
+
 TEST (JointCRFEstimator, ChainsAShuffledCloudInBeamOrder)
 {
   // A cloud out of beam order: a kd-tree's or a voxel grid's, here a shuffle.
