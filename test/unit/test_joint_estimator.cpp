@@ -1292,6 +1292,11 @@ TEST (JointCRFEstimator, ReportsBadInputWithoutCrashing)
   estimator.align (aligned);
   EXPECT_FALSE (estimator.hasConverged ());
   estimator.setIndices (pcl::IndicesPtr ());
+  estimator.setInputSource (toCloud (Eigen::Matrix2Xd::Zero (2, 20)));  // every point at the sensor: no return
+  estimator.align (aligned);
+  EXPECT_FALSE (estimator.hasConverged ());
+  EXPECT_TRUE (estimator.getClusters ().empty ());
+  estimator.setInputSource (toCloud (pair.source));
   alignWithPairOdometry (estimator, pair, aligned);
   EXPECT_TRUE (estimator.hasConverged ());
 }

@@ -131,7 +131,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
   // The valid source points (the indices, or the whole cloud) in beam order.
   source_xy_ = scanToMatrix2X (*input_, *indices_, source_index_);
   if (source_index_.empty ()) {
-    PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point.\n", getClassName ().c_str (), method);
+    PCL_ERROR ("[pcl_crf::%s::%s] The source cloud has no finite point off the sensor (x = y = 0 is no return).\n", getClassName ().c_str (), method);
     return false;
   }
   if (prepare_target) {
@@ -139,7 +139,7 @@ CRFMatcher<PointSource, PointTarget, Scalar>::initCompute ()
     const Eigen::Matrix2Xd target_xy = target_indices_ ? scanToMatrix2X (*target_, *target_indices_, target_index_)
                                                        : scanToMatrix2X (*target_, target_index_);
     if (target_xy.cols () == 0) {
-      PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point.\n", getClassName ().c_str (), method);
+      PCL_ERROR ("[pcl_crf::%s::%s] The target cloud has no finite point off the sensor (x = y = 0 is no return).\n", getClassName ().c_str (), method);
       return false;
     }
     target_prepared_ = std::make_shared<const matching::MatchingTarget> (

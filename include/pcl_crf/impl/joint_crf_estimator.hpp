@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 
@@ -146,6 +148,9 @@ JointCRFEstimator<PointSource, PointTarget, Scalar>::computeTransformation (Poin
     odometry.covariance = guess_covariance_;
   }
   try {
+    if (source.cols () == 0 || target.cols () == 0)
+      throw std::invalid_argument (std::string ("The ") + (source.cols () == 0 ? "source" : "target") +
+                                   " cloud has no finite point off the sensor (x = y = 0 is no return).");
     result_ = joint::estimateJoint (source, target, odometry, model_, parameters_);
   }
   catch (const std::exception& error) {
