@@ -29,13 +29,8 @@ struct KnnIndex::Impl
   groupCopies ()
   {
     const Eigen::Index n = points.cols ();
-    const std::vector<int> first = firstOfEqualPoints (points);
-    std::vector<int> distinct_of (static_cast<std::size_t> (n));
-    int count = 0;
-    for (Eigen::Index c = 0; c < n; ++c) {
-      const int f = first[static_cast<std::size_t> (c)];
-      distinct_of[c] = f == c ? count++ : distinct_of[f];
-    }
+    const std::vector<int> distinct_of = firstCopyColumns (firstOfEqualPoints (points));
+    const int count = n == 0 ? 0 : *std::max_element (distinct_of.begin (), distinct_of.end ()) + 1;
     distinct.resize (0, 0);
     copy_offsets.clear ();
     copies.clear ();

@@ -65,4 +65,16 @@ firstCopies (const std::vector<int>& first)
   return copies;
 }
 
+std::vector<int>
+firstCopyColumns (const std::vector<int>& first)
+{
+  std::vector<int> column (first.size ());
+  int count = 0;
+  for (std::size_t i = 0; i < first.size (); ++i) {
+    const auto f = static_cast<std::size_t> (first[i]);
+    column[i] = f == i ? count++ : column[f];
+  }
+  return column;
+}
+
 }  // namespace pcl_crf

@@ -104,12 +104,10 @@ liftToFirstCopies (const Eigen::Matrix2Xd& source, const MatchingTarget& target,
   if (!repeatsAPoint (target.first_copy))
     return liftMatches (source, target.points, thinned, coarse_matches, groups, {motion});
   const std::vector<int> distinct = firstCopies (target.first_copy);
-  std::vector<int> position (target.first_copy.size (), -1);  // a first copy's column in distinct
-  for (std::size_t k = 0; k < distinct.size (); ++k)
-    position[static_cast<std::size_t> (distinct[k])] = static_cast<int> (k);
+  const std::vector<int> column = firstCopyColumns (target.first_copy);  // a first copy's column in distinct
   ThinnedPair on_distinct = thinned;
   for (int& k : on_distinct.target.kept)
-    k = position[static_cast<std::size_t> (k)];
+    k = column[static_cast<std::size_t> (k)];
   std::vector<int> matches =
       liftMatches (source, target.points (Eigen::all, distinct), on_distinct, coarse_matches, groups, {motion});
   for (int& j : matches)
@@ -172,15 +170,11 @@ indexFullTarget (MatchResult coarse, const std::vector<int>& kept)
 MatchResult
 liftToSourceCopies (const MatchResult& distinct, const std::vector<int>& source_first)
 {
-  std::vector<int> position (source_first.size (), -1);  // a first copy's node in distinct
-  int k = 0;
-  for (std::size_t i = 0; i < source_first.size (); ++i)
-    if (source_first[i] == static_cast<int> (i))
-      position[i] = k++;
+  const std::vector<int> node_of = firstCopyColumns (source_first);  // a point's first copy's node in distinct
   MatchResult result;
   result.map_probability.resize (static_cast<Eigen::Index> (source_first.size ()));
   for (std::size_t i = 0; i < source_first.size (); ++i) {
-    const int node = position[static_cast<std::size_t> (source_first[i])];
+    const int node = node_of[i];
     result.matches.push_back (distinct.matches[node]);
     const auto first = distinct.candidates.targets.begin () + distinct.candidates.offsets[node];
     result.candidates.targets.insert (result.candidates.targets.end (), first,

@@ -33,4 +33,9 @@ repeatsAPoint (const std::vector<int>& first);
 std::vector<int>
 firstCopies (const std::vector<int>& first);
 
+/** \brief Per point of \a first (firstOfEqualPoints ()): the column its first copy holds
+ *  among the first copies alone (firstCopies ()), where a result on them is found. */
+std::vector<int>
+firstCopyColumns (const std::vector<int>& first);
+
 }  // namespace pcl_crf
