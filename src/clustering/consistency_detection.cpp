@@ -27,11 +27,17 @@ validate (const SensorInfo& sensor, const ConsistencyParameters& p)
                                  "confidence_sigmas >= 0");
 }
 
-/** Beam index of a bearing, or −1 outside the field of view. */
+/** Beam index of a bearing, or −1 outside the field of view. The bearing is taken
+ *  counter-clockwise from beam 0, within one turn: angle_min and angle_min + 2π name
+ *  the same sensor. */
 int
 beamOf (const Eigen::Vector2d& p, const SensorInfo& sensor)
 {
-  const double b = std::round ((std::atan2 (p.y (), p.x ()) - sensor.angle_min) / sensor.angle_increment);
+  constexpr double kTurn = 2.0 * M_PI;
+  const double half_beam = 0.5 * sensor.angle_increment;
+  double from_first = std::atan2 (p.y (), p.x ()) - sensor.angle_min;
+  from_first -= kTurn * std::floor ((from_first + half_beam) / kTurn);  // into [−half a beam, a turn − half a beam)
+  const double b = std::round (from_first / sensor.angle_increment);
   return b >= 0.0 && b < sensor.beam_count ? static_cast<int> (b) : -1;
 }
 

@@ -352,6 +352,21 @@ TEST (ConsistencyDetection, FindsACarThatLeftItsPlace)
   EXPECT_EQ (world_flagged, 0);
 }
 
+TEST (ConsistencyDetection, TheFirstBeamsAngleIsReadWithinOneTurn)
+{
+  // angle_min and angle_min ± 2π name the same laser: the same segments are dynamic.
+  const ScanPair pair =
+      makePair (street ({8, 0}, {12.5, 1.8}), makeRigid2d (1.0, 0, 0), makeRigid2d (3.0, 0, 0), false);
+  const Rigid2d T_target_source = pair.odometry.T_source_target.inverse ();
+  const std::vector<int> cbd = detectDynamicSegments (pair.source, pair.target, pair.sensor, T_target_source);
+  ASSERT_GT (movingObjectRecall (cbd, pair.source_object), 0.95);
+  for (const double turns : {-2.0, -1.0, 1.0, 3.0}) {
+    SensorInfo sensor = pair.sensor;
+    sensor.angle_min += turns * 2.0 * M_PI;
+    EXPECT_EQ (detectDynamicSegments (pair.source, pair.target, sensor, T_target_source), cbd) << turns << " turns";
+  }
+}
+
 TEST (KMeansBaseline, RecoversTwoMotionsAndSplitsAStaticWorld)
 {
   const ScanPair pair = makePair (street ({8, 0}, {12.5, 1.8}), kEgo, kCarMotion, true);
