@@ -109,10 +109,20 @@ public:
       method_->train (training_pairs);  // the usual case: no copy
       return;
     }
-    std::vector<ScanPair> returns;
+    std::vector<ScanPair> returns;  // a pair with a scan of no return teaches nothing: left out
     returns.reserve (training_pairs.size ());
-    for (const ScanPair& pair : training_pairs)
-      returns.push_back (changesAScan (pair) ? checkedReturns (pair).pair : pair);
+    for (const ScanPair& pair : training_pairs) {
+      if (!changesAScan (pair)) {
+        returns.push_back (pair);
+        continue;
+      }
+      PairReturns kept = keepReturns (pair);
+      if (holdsAReturnInEachScan (kept))
+        returns.push_back (std::move (kept.pair));
+    }
+    if (returns.empty ())
+      throw std::invalid_argument ("every training pair has a scan without a return (every point at the sensor (0, 0) "
+                                   "or at or beyond the sensor's maximum range): nothing to learn from");
     method_->train (returns);
   }
 
@@ -136,21 +146,17 @@ public:
       throw std::invalid_argument ("pair '" + pair.name + "': " + problem);
     if (!changesAScan (pair))
       return method_->predict (pair);  // the usual case: no copy of the pair
-    const PairReturns returns = checkedReturns (pair);
+    const PairReturns returns = keepReturns (pair);
+    if (!holdsAReturnInEachScan (returns))  // nothing to estimate from
+      return predictFromOdometry (pair);
     return liftToAllPoints (method_->predict (returns.pair), returns);
   }
 
 private:
-  static PairReturns
-  checkedReturns (const ScanPair& pair)
+  static bool
+  holdsAReturnInEachScan (const PairReturns& returns)
   {
-    PairReturns returns = keepReturns (pair);
-    if (returns.source_index.empty () || returns.target_index.empty ())
-      throw std::invalid_argument ("pair '" + pair.name + "': every point of its " +
-                                   (returns.source_index.empty () ? "source" : "target") +
-                                   " scan lies at the sensor (0, 0) or at or beyond the sensor's maximum range (" +
-                                   std::to_string (pair.sensor.range_max) + " m), so it holds no return");
-    return returns;
+    return !returns.source_index.empty () && !returns.target_index.empty ();
   }
 
   std::unique_ptr<EvaluationMethod> method_;
@@ -224,6 +230,20 @@ liftToAllPoints (const Prediction& reduced, const PairReturns& returns)
       all.source_cluster[static_cast<std::size_t> (returns.source_index[k])] = reduced.source_cluster[k];
   }
   return all;
+}
+
+Prediction
+predictFromOdometry (const ScanPair& pair)
+{
+  const std::string problem = odometryProblem (pair.odometry);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::predictFromOdometry] pair '" + pair.name + "': " + problem);
+  Prediction prediction;
+  prediction.source_cluster.assign (static_cast<std::size_t> (pair.source.cols ()), 0);
+  prediction.cluster_motions = {pair.odometry.T_source_target.inverse ()};
+  prediction.static_cluster = 0;
+  prediction.T_source_target = pair.odometry.T_source_target;
+  return prediction;
 }
 
 std::unique_ptr<EvaluationMethod>

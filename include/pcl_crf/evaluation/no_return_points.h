@@ -76,11 +76,22 @@ keepReturns (const ScanPair& pair);
 Prediction
 liftToAllPoints (const Prediction& reduced, const PairReturns& returns);
 
+/** \brief The prediction for a pair one of whose scans holds no return (a laser
+ *  blinded for a scan, say), which leaves nothing to estimate from: the odometry is the
+ *  sensor's motion, and every source point is in the static world, moved by it, with
+ *  no match made (an empty Prediction::source_match: the pair's association is not
+ *  scored).
+ *  \throws std::invalid_argument naming the pair when its odometry is unusable. */
+Prediction
+predictFromOdometry (const ScanPair& pair);
+
 /** \brief \a method seeing only the returns of every pair (keepReturns) when it learns
  *  and when it predicts; its predictions are lifted back to every point
- *  (liftToAllPoints: the others join the static world, unmatched). Pairs without points at or beyond the maximum range,
- *  without repeated points and in beam order go to \a method unchanged. A pair with no return in one of its scans is reported as an
- *  std::invalid_argument naming the pair. createEvaluationMethod () wraps every method
+ *  (liftToAllPoints: the others join the static world, unmatched). Pairs without points
+ *  at or beyond the maximum range, without repeated points and in beam order go to
+ *  \a method unchanged. A pair with no return in one of its scans is predicted from its
+ *  odometry (predictFromOdometry) and left out of training (std::invalid_argument when
+ *  every training pair is such a pair). createEvaluationMethod () wraps every method
  *  in it. */
 std::unique_ptr<EvaluationMethod>
 ignoringNoReturnPoints (std::unique_ptr<EvaluationMethod> method);
