@@ -101,6 +101,42 @@ TEST (MetricsPairScores, AssociationScores)
   EXPECT_DOUBLE_EQ (scores.seconds, 0.5);
 }
 
+/** Six source and six target points on an arc 5 m away, bearings 0, 0.1, ..., 0.5 rad
+ *  (beam order); true matches 0 … 5, one static world. */
+pcl_crf::ScanPair
+arcPair ()
+{
+  pcl_crf::ScanPair pair;
+  pair.source.resize (2, 6);
+  for (int i = 0; i < 6; ++i)
+    pair.source.col (i) = 5.0 * Eigen::Vector2d (std::cos (0.1 * i), std::sin (0.1 * i));
+  pair.target = pair.source;
+  pair.source_match = {0, 1, 2, 3, 4, 5};
+  pair.source_object.assign (6, 0);
+  pair.objects.push_back ({0, true, pcl_crf::Rigid2d::Identity (), "world"});
+  return pair;
+}
+
+TEST (MetricsPairScores, EditDistancesReadTheScanInBeamOrder)
+{
+  // Matches shifted by one beam: delete the first, insert an outlier at the end.
+  pcl_crf::ScanPair pair = arcPair ();
+  pcl_crf::Prediction prediction;
+  prediction.source_match = {1, 2, 3, 4, 5, kNoMatch};
+  EXPECT_DOUBLE_EQ (pcl_crf::scorePair (pair, prediction).association_sed, 2.0);
+  // The same source points listed in no beam order, truth and prediction with them:
+  // read in the file's order the sequences were 6 edits apart.
+  const std::vector<int> order{3, 0, 5, 1, 4, 2};
+  pcl_crf::ScanPair shuffled = pair;
+  pcl_crf::Prediction shuffled_prediction;
+  for (std::size_t k = 0; k < order.size (); ++k) {
+    shuffled.source.col (static_cast<Eigen::Index> (k)) = pair.source.col (order[k]);
+    shuffled.source_match[k] = pair.source_match[static_cast<std::size_t> (order[k])];
+    shuffled_prediction.source_match.push_back (prediction.source_match[static_cast<std::size_t> (order[k])]);
+  }
+  EXPECT_DOUBLE_EQ (pcl_crf::scorePair (shuffled, shuffled_prediction).association_sed, 2.0);
+}
+
 TEST (MetricsPairScores, ToleranceComesFromOptions)
 {
   pcl_crf::Prediction prediction;

@@ -34,7 +34,8 @@ struct PairScores
   /** same, a match within ScoreOptions::match_tolerance of the true target
    *  point also correct. */
   double association_accuracy_tolerance = kNaN;
-  /** edit distance between the predicted and the true match sequences [edits]. */
+  /** edit distance between the predicted and the true match sequences, read in the
+   *  source scan's beam order (beamOrder ()) [edits]. */
   double association_sed = kNaN;
   /** source points predicted as kNoMatch [%]. */
   double predicted_outlier_pct = kNaN;
@@ -55,7 +56,8 @@ struct PairScores
   /** fraction of source points whose cluster is paired with their object
    *  ("motion detection accuracy"). */
   double cluster_accuracy = kNaN;
-  /** edit distance between the mapped object sequence and the true object sequence [edits]. */
+  /** edit distance between the mapped object sequence and the true object sequence, in
+   *  the source scan's beam order (beamOrder ()) [edits]. */
   double cluster_sed = kNaN;
   /** distinct cluster labels used, outliers excluded [count]. */
   double clusters_found = kNaN;
