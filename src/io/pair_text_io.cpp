@@ -43,13 +43,15 @@ struct LineReader
     return *value;
   }
 
+  /** A whole number in [lowest, most] (the line's documented range, within int's). */
   int
-  integer (std::istringstream& in, const char* what) const
+  integer (std::istringstream& in, const char* what, int lowest = std::numeric_limits<int>::lowest (),
+           int most = std::numeric_limits<int>::max ()) const
   {
     const double value = number (in, what);
-    constexpr double kLowest = std::numeric_limits<int>::lowest (), kMost = std::numeric_limits<int>::max ();
-    if (value != std::floor (value) || value < kLowest || value > kMost)
-      fail (std::string (what) + " must be a whole number in [-2147483648, 2147483647], not " + formatGeneral (value, 17));
+    if (value != std::floor (value) || value < lowest || value > most)
+      fail (std::string (what) + " must be a whole number in [" + std::to_string (lowest) + ", " +
+            std::to_string (most) + "], not " + formatGeneral (value, 17));
     return static_cast<int> (value);
   }
 
@@ -74,7 +76,7 @@ void
 readObject (LineReader& reader, std::istringstream& in, ScanPair& pair)
 {
   ObjectTruth object;
-  object.id = reader.integer (in, "object id");
+  object.id = reader.integer (in, "object id", 0);
   std::string motion_kind;
   in >> motion_kind;
   if (motion_kind != "static" && motion_kind != "moving")
@@ -119,7 +121,7 @@ readPairText (const std::string& path, ScanPair& pair)
     if (key == kMagic)
       readHeader (reader, in);
     else if (key == "sensor") {
-      pair.sensor.beam_count = reader.integer (in, "beam count");
+      pair.sensor.beam_count = reader.integer (in, "beam count", 1, kMaxBeamCount);
       pair.sensor.angle_min = reader.number (in, "angle_min");
       pair.sensor.angle_increment = reader.number (in, "angle_increment");
       pair.sensor.range_max = reader.number (in, "range_max");
@@ -145,12 +147,12 @@ readPairText (const std::string& path, ScanPair& pair)
       reader.fail ("unknown key '" + key + "'");
     reader.expectEnd (in);
   }
-  reader.line_number = 0;
+  const auto failInFile = [&path] (const std::string& what) { throw DatasetError (path + ": " + what); };
   if (seen.count (kMagic) == 0)
-    reader.fail ("empty file or missing header line");
+    failInFile ("empty file or missing header line");
   for (const char* key : {"sensor", "odometry", "odometry_covariance"})
     if (seen.count (key) == 0)
-      reader.fail (std::string ("missing '") + key + "' line");
+      failInFile (std::string ("missing '") + key + "' line");
 }
 
 void

@@ -327,14 +327,20 @@ checkHeader (const std::string& path)
   if (point_bytes > kMaxPcdPointBytes)
     fail ("a point takes " + formatGeneral (point_bytes, 17) + " bytes (at most 100000)");
   constexpr double kMostPoints = 2147483647.0;
+  std::map<std::string, double> extent;  // WIDTH, HEIGHT and (when given) POINTS
   for (const char* keyword : {"WIDTH", "HEIGHT", "POINTS"}) {
     const std::vector<std::string> words = wordsAfter (lines, keyword);
     if (!lines.count (keyword) && std::string (keyword) == "POINTS")
       continue;  // optional (PCD v0.6)
-    if (words.size () != 1 || !headerCount (words[0], kMostPoints))
+    const std::optional<double> value = words.size () == 1 ? headerCount (words[0], kMostPoints) : std::nullopt;
+    if (!value)
       fail (std::string (keyword) + " must be one whole number from 0 to 2147483647, not '" +
             (words.empty () ? std::string () : shortWord (words[0])) + (words.size () > 1 ? " ..." : "") + "'");
+    extent[keyword] = *value;
   }
+  if (extent.count ("POINTS") && extent["POINTS"] != extent["WIDTH"] * extent["HEIGHT"])
+    fail ("POINTS " + formatGeneral (extent["POINTS"], 17) + " is not WIDTH x HEIGHT = " +
+          formatGeneral (extent["WIDTH"], 17) + " x " + formatGeneral (extent["HEIGHT"], 17));
   const std::vector<std::string> data = wordsAfter (lines, "DATA");
   if (data.size () != 1 || (data[0] != "ascii" && data[0] != "binary" && data[0] != "binary_compressed"))
     fail ("the DATA line must name one of ascii, binary, binary_compressed");
@@ -459,6 +465,44 @@ storeAsciiValue (std::string_view word, std::uint8_t datatype, std::uint8_t* at)
   }
 }
 
+/** \brief [lowest, max] of integer type \a T, as text. */
+template <typename T>
+std::string
+wholeRange ()
+{
+  return "[" + std::to_string (+std::numeric_limits<T>::lowest ()) + ", " + std::to_string (+std::numeric_limits<T>::max ()) +
+         "]";
+}
+
+/** \brief The range of integer \a datatype as text; empty for a float type. */
+std::string
+wholeRange (std::uint8_t datatype)
+{
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: return wholeRange<std::int8_t> ();
+    case pcl::PCLPointField::UINT8: return wholeRange<std::uint8_t> ();
+    case pcl::PCLPointField::INT16: return wholeRange<std::int16_t> ();
+    case pcl::PCLPointField::UINT16: return wholeRange<std::uint16_t> ();
+    case pcl::PCLPointField::INT32: return wholeRange<std::int32_t> ();
+    case pcl::PCLPointField::UINT32: return wholeRange<std::uint32_t> ();
+    case pcl::PCLPointField::INT64: return wholeRange<std::int64_t> ();
+    case pcl::PCLPointField::UINT64: return wholeRange<std::uint64_t> ();
+    default: return {};
+  }
+}
+
+/** \brief What is wrong with the ascii value \a word that storeAsciiValue () refused
+ *  for \a field: no decimal number, or a number outside the integer type's range. */
+std::string
+asciiValueProblem (std::string_view word, const pcl::PCLPointField& field)
+{
+  const std::string layout = describeLayout (field.datatype, field.count);
+  const std::string range = wholeRange (field.datatype);
+  if (range.empty () || !parseDecimal (word))
+    return "not a decimal number of its " + layout;
+  return "not a whole number in " + range + " (its " + layout + ")";
+}
+
 /** \brief Reads the ascii body of \a path (after byte \a data_index) into \a blob, whose
  *  header is read, the same whatever the program's locale (storeAsciiValue ()). PCL's
  *  reader parses with a stream in the global C++ locale: after a host program's
@@ -491,8 +535,7 @@ readAsciiBody (const std::string& path, std::size_t data_index, pcl::PCLPointClo
         std::uint8_t* at = &blob.data[point * blob.point_step + field.offset + k * pcl::getFieldSize (field.datatype)];
         if (!storeAsciiValue (words[word], field.datatype, at))
           throw DatasetError (path + ": point " + std::to_string (point) + " has " + field.name + " '" +
-                              std::string (words[word]) + "', not a decimal number of its " +
-                              describeLayout (field.datatype, field.count));
+                              std::string (words[word]) + "', " + asciiValueProblem (words[word], field));
         blob.is_dense = blob.is_dense && !std::isnan (valueAt (at, field.datatype));
       }
     ++point;

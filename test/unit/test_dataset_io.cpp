@@ -223,7 +223,8 @@ TEST_F (DatasetIo, AsciiValuesAreDecimalNumbersOfTheirField)
   const std::string row = "3.0999999 -0.5 0 3";
   for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
            {"3.0999999 -0.5 0 3x", "point 2 has label '3x', not a decimal number of its TYPE U SIZE 4 COUNT 1"},
-           {"3.0999999 -0.5 0 3.5", "point 2 has label '3.5', not a decimal number of its TYPE U SIZE 4"},
+           {"3.0999999 -0.5 0 3.5", "point 2 has label '3.5', not a whole number in [0, 4294967295] (its TYPE U SIZE 4"},
+           {"3.0999999 -0.5 0 -1", "point 2 has label '-1', not a whole number in [0, 4294967295] (its TYPE U SIZE 4"},
            {"3.0999999 -0.5 0 nan", "point 2 has label 'nan'"},
            {"0x1 -0.5 0 3", "point 2 has x '0x1', not a decimal number of its TYPE F SIZE 4"},
            {"3,0999999 -0.5 0 3", "point 2 has x '3,0999999'"},
@@ -260,6 +261,8 @@ TEST_F (DatasetIo, APcdHeaderIsCheckedBeforePclReadsIt)
       {"WIDTH 3\nHEIGHT 1", "WIDTH -2147483648\nHEIGHT -2147483648",
        "WIDTH must be one whole number from 0 to 2147483647, not '-2147483648'"},
       {"POINTS 3", "POINTS -1", "POINTS must be one whole number from 0 to 2147483647, not '-1'"},  // std::length_error
+      // PCL's reader refused it as an unreadable header, naming nothing
+      {"POINTS 3", "POINTS 2", "POINTS 2 is not WIDTH x HEIGHT = 3 x 1"},
       // a negative SIZE corrupted the heap; overlapping fields read y as 0
       {"SIZE 4 4 4 4", "SIZE 4 4 -4 4", "field 'z' has SIZE -4 and TYPE F"},
       {"SIZE 4 4 4 4", "SIZE 4 4 4 3", "field 'label' has SIZE 3 and TYPE U"},
@@ -277,7 +280,8 @@ TEST_F (DatasetIo, APcdHeaderIsCheckedBeforePclReadsIt)
   // A label stored as uint64 beyond its range wrapped to 0.
   replaceInFile (target, "SIZE 4 4 4 4", "SIZE 4 4 4 8");
   replaceInFile (target, "3.0999999 -0.5 0 3", "3.0999999 -0.5 0 18446744073709551615");
-  expectLoadError (pair_dir, "target.pcd: point 2 has label '18446744073709551615', not a decimal number of its TYPE U SIZE 8");
+  expectLoadError (pair_dir, "target.pcd: point 2 has label '18446744073709551615', not a whole number in [0, "
+                            "18446744073709551615] (its TYPE U SIZE 8");
   replaceInFile (target, "3.0999999 -0.5 0 18446744073709551615", "3.0999999 -0.5 0 3");
   EXPECT_EQ (pcl_crf::loadScanPair (pair_dir).target_object.back (), 3);  // the same label as uint64 reads
 }
@@ -438,7 +442,21 @@ TEST_F (DatasetIo, AbsurdBeamCountIsAnError)
   EXPECT_NO_THROW (pcl_crf::validateScanPair (pair, "x"));
   const std::string pair_dir = writeSmallPair ();
   replaceInFile (fs::path (pair_dir) / "pair.txt", "sensor 5 ", "sensor 1000000000 ");
-  expectLoadError (pair_dir, "sensor beam count 1000000000 exceeds 100000");
+  expectLoadError (pair_dir, "pair.txt:2: beam count must be a whole number in [1, 100000], not 1000000000");
+}
+
+TEST_F (DatasetIo, PairTextNamesTheDocumentedRangesAndMissingLines)
+{
+  const std::string pair_dir = writeSmallPair ();
+  const fs::path text = fs::path (pair_dir) / "pair.txt";
+  replaceInFile (text, "sensor 5 ", "sensor 5.5 ");
+  expectLoadError (pair_dir, "pair.txt:2: beam count must be a whole number in [1, 100000], not 5.5");
+  replaceInFile (text, "sensor 5.5 ", "sensor 5 ");
+  replaceInFile (text, "object 3 moving", "object -3 moving");
+  expectLoadError (pair_dir, "pair.txt:6: object id must be a whole number in [0, 2147483647], not -3");
+  replaceInFile (text, "object -3 moving", "object 3 moving");
+  replaceInFile (text, "odometry ", "# odometry ");  // the odometry line, not its covariance's
+  expectLoadError (pair_dir, "pair.txt: missing 'odometry' line");
 }
 
 TEST_F (DatasetIo, EmptyScanIsAnError)
@@ -525,7 +543,7 @@ TEST_F (DatasetIo, ObjectIdsUpToTheLargestIntAreRead)
   replaceInFile (fs::path (pair_dir) / "target.pcd", "3.0999999 -0.5 0 3", "3.0999999 -0.5 0 3000000000");
   expectLoadError (pair_dir, "target.pcd: point 2 has label 3000000000, beyond the largest object id 2147483647");
   replaceInFile (fs::path (pair_dir) / "pair.txt", "object 3 moving", "object 3000000000 moving");
-  expectLoadError (pair_dir, "pair.txt:6: object id must be a whole number in [-2147483648, 2147483647], not 3000000000");
+  expectLoadError (pair_dir, "pair.txt:6: object id must be a whole number in [0, 2147483647], not 3000000000");
 }
 
 TEST_F (DatasetIo, ScanIntervalIsOptionalAndPositive)
