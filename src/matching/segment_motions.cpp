@@ -37,30 +37,44 @@ struct SegmentQuery
   std::vector<double> radii_squared;
 };
 
-/** The bearing interval [min, max] the target scan covers (its field of view). */
+/** The bearings the target scan covers (its field of view): from the return after the
+ *  widest gap between its bearings, the sensor's back (as makeRangeProfile () infers
+ *  it), round to the one before it; [min, max] when the back lies across ±π (a laser
+ *  facing forward), else [min, π] ∪ [−π, max] (one facing elsewhere in the frame of its
+ *  points: taken as [min, max] there, all round, points that left the view were judged). */
 struct FieldOfView
 {
   double min = -M_PI;
   double max = M_PI;
+  bool wraps = false;  // through ±π
 
   bool
   contains (const Eigen::Vector2d& p) const
   {
     const double bearing = std::atan2 (p.y (), p.x ());
-    return bearing >= min && bearing <= max;
+    return wraps ? bearing >= min || bearing <= max : bearing >= min && bearing <= max;
   }
 };
 
 FieldOfView
 fieldOfView (const Eigen::Matrix2Xd& scan)
 {
-  FieldOfView view{M_PI, -M_PI};
-  for (Eigen::Index i = 0; i < scan.cols (); ++i) {
-    const double bearing = std::atan2 (scan (1, i), scan (0, i));
-    view.min = std::min (view.min, bearing);
-    view.max = std::max (view.max, bearing);
-  }
-  return view;
+  std::vector<double> bearings (static_cast<std::size_t> (scan.cols ()));
+  for (Eigen::Index i = 0; i < scan.cols (); ++i)
+    bearings[static_cast<std::size_t> (i)] = std::atan2 (scan (1, i), scan (0, i));
+  if (bearings.empty ())
+    return {M_PI, -M_PI, false};  // sees nothing
+  std::sort (bearings.begin (), bearings.end ());
+  double widest = bearings.front () + 2.0 * M_PI - bearings.back ();  // the gap across ±π
+  std::size_t after = 0;  // the first return after the widest gap
+  for (std::size_t k = 1; k < bearings.size (); ++k)
+    if (bearings[k] - bearings[k - 1] > widest) {
+      widest = bearings[k] - bearings[k - 1];
+      after = k;
+    }
+  if (after == 0)
+    return {bearings.front (), bearings.back (), false};
+  return {bearings[after], bearings[after - 1], true};
 }
 
 /** The samples a hypothesis is judged on: those the target sensor sees under the
