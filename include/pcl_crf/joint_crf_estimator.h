@@ -50,6 +50,18 @@ public:
 
   JointCRFEstimator ();
 
+  /** Not copyable or movable, as pcl::IterativeClosestPoint: a copy would share
+   *  pcl::Registration's search trees and correspondences with the original (a copy's
+   *  align () on another target left the original's getFitnessScore () measured
+   *  against that target). Hold one through Ptr to pass it around. */
+  JointCRFEstimator (const JointCRFEstimator&) = delete;
+  JointCRFEstimator (JointCRFEstimator&&) = delete;
+  JointCRFEstimator&
+  operator= (const JointCRFEstimator&) = delete;
+  JointCRFEstimator&
+  operator= (JointCRFEstimator&&) = delete;
+  ~JointCRFEstimator () override = default;
+
   /** \brief Uses a trained model (joint::trainJointModel or pcl_crf_train --method joint). */
   void
   setModel (const joint::JointModel& model) { model_ = model; }

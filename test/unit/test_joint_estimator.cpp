@@ -30,9 +30,16 @@
 #include <random>
 #include <sstream>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 namespace {
+
+// A copy would share pcl::Registration's search trees with the original (as ICP, not copyable).
+static_assert (!std::is_copy_constructible_v<pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>> &&
+                   !std::is_copy_assignable_v<pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>> &&
+                   !std::is_move_constructible_v<pcl_crf::JointCRFEstimator<pcl::PointXYZ, pcl::PointXYZ>>,
+               "JointCRFEstimator is neither copyable nor movable");
 
 using namespace pcl_crf;
 
