@@ -150,6 +150,50 @@ sortedByBearing (const Eigen::Matrix2Xd& points, bool listed_clockwise)
   return order;
 }
 
+/** \a order (a scan's points in beam order, counter-clockwise) read from the point
+ *  after its widest break when its listing starts between two neighbouring beams that
+ *  both returned (a 360° laser listing its circle from a beam in front of a surface):
+ *  the widest gap between the bearings of neighbours, a sector without a return, or,
+ *  where none is wider than neighbouring beams are apart (kNeighbourSteps median
+ *  steps), the widest jump between neighbouring points, where its surfaces break. The
+ *  chains are then cut at the same place from whichever such beam the listing starts,
+ *  and not through the object in front of it. A scan whose listing starts at a gap (a
+ *  laser's back, or the sector without a return it starts in) keeps its order. */
+void
+startAfterTheWidestBreak (const Eigen::Matrix2Xd& points, std::vector<int>& order)
+{
+  constexpr double kNeighbourSteps = 1.5;  // a step of more leaves a beam out
+  const std::size_t n = order.size ();
+  if (n < 3)
+    return;
+  std::vector<double> gaps (n);  // counter-clockwise from point k − 1 (the last, for k = 0) to point k
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d a = points.col (order[(k + n - 1) % n]), b = points.col (order[k]);
+    if (!hasBearing (a) || !hasBearing (b))
+      return;  // no bearing to order by: read as listed
+    gaps[k] = wrapped (std::atan2 (b.y (), b.x ()) - std::atan2 (a.y (), a.x ()));
+  }
+  std::vector<double> steps (gaps.begin () + 1, gaps.end ());
+  const auto middle = steps.begin () + static_cast<long> (steps.size () / 2);
+  std::nth_element (steps.begin (), middle, steps.end ());
+  const double neighbours_apart = kNeighbourSteps * *middle;
+  if (!(gaps[0] > 0.0 && gaps[0] <= neighbours_apart))
+    return;  // the listing starts at a gap
+  std::size_t start = static_cast<std::size_t> (std::max_element (gaps.begin (), gaps.end ()) - gaps.begin ());
+  if (gaps[start] <= neighbours_apart) {  // a return on every beam: cut at the widest jump
+    start = 0;
+    double widest = (points.col (order.front ()) - points.col (order.back ())).squaredNorm ();
+    for (std::size_t k = 1; k < n; ++k) {
+      const double jump = (points.col (order[k]) - points.col (order[k - 1])).squaredNorm ();
+      if (jump > widest) {
+        widest = jump;
+        start = k;
+      }
+    }
+  }
+  std::rotate (order.begin (), order.begin () + static_cast<long> (start), order.end ());
+}
+
 }  // namespace
 
 double
@@ -170,12 +214,17 @@ std::vector<int>
 beamOrder (const Eigen::Matrix2Xd& points)
 {
   const Reading reading = readingOf (points);
-  if (reading == Reading::kByBearing || reading == Reading::kByBearingListedClockwise)
-    return sortedByBearing (points, reading == Reading::kByBearingListedClockwise);
-  std::vector<int> order (static_cast<std::size_t> (points.cols ()));
-  std::iota (order.begin (), order.end (), 0);
-  if (reading == Reading::kBackwards)
-    std::reverse (order.begin (), order.end ());
+  std::vector<int> order;
+  if (reading == Reading::kByBearing || reading == Reading::kByBearingListedClockwise) {
+    order = sortedByBearing (points, reading == Reading::kByBearingListedClockwise);
+  }
+  else {
+    order.resize (static_cast<std::size_t> (points.cols ()));
+    std::iota (order.begin (), order.end (), 0);
+    if (reading == Reading::kBackwards)
+      std::reverse (order.begin (), order.end ());
+  }
+  startAfterTheWidestBreak (points, order);
   return order;
 }
 

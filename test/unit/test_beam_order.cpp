@@ -80,8 +80,41 @@ TEST (BeamOrder, ALasersScanCounterClockwiseIsInBeamOrderFromAnyStart)
     const Eigen::Matrix2Xd scan = atBearings (degrees);
     EXPECT_EQ (pcl_crf::bearingBacktrack (scan), 0.0);
     EXPECT_TRUE (pcl_crf::inBeamOrder (scan));
-    EXPECT_EQ (pcl_crf::beamOrder (scan), identity (degrees.size ()));
   }
+  // Listed from their backs, the partial views are read as listed.
+  EXPECT_EQ (pcl_crf::beamOrder (atBearings (scans[0])), identity (361));
+  EXPECT_EQ (pcl_crf::beamOrder (atBearings (scans[1])), identity (1081));
+}
+
+TEST (BeamOrder, A360ScanIsCutAtItsWidestBreakWhateverBeamItsListingStartsOn)
+{
+  // A wall 5 m round a 360° laser (0.5° beams), a box 1 m away on beams 100–139 and a
+  // car 3 m away on beams 140–199: the widest jump between neighbours is onto the box
+  // (5 m -> 1 m). Listed from any beam, the chain starts there.
+  const auto range = [] (int beam) { return beam >= 100 && beam < 140 ? 1.0 : beam >= 140 && beam < 200 ? 3.0 : 5.0; };
+  for (const int first : {0, 37, 120, 600}) {
+    Eigen::Matrix2Xd scan (2, 720);
+    std::vector<int> beam_of (720);
+    for (int k = 0; k < 720; ++k) {
+      beam_of[k] = (first + k) % 720;
+      const double bearing = beam_of[k] * 0.5 * kPi / 180.0;
+      scan.col (k) << range (beam_of[k]) * std::cos (bearing), range (beam_of[k]) * std::sin (bearing);
+    }
+    const std::vector<int> order = pcl_crf::beamOrder (scan);
+    ASSERT_EQ (order.size (), 720u);
+    for (int k = 0; k < 720; ++k)
+      ASSERT_EQ (beam_of[order[k]], (100 + k) % 720) << "listed from beam " << first << ", chain point " << k;
+  }
+  // With a sector without a return (beams 400–459 left out) the chain starts after it.
+  Eigen::Matrix2Xd open (2, 660);
+  for (int k = 0, beam = 470; k < 660; ++k, beam = (beam + 1) % 720) {
+    if (beam == 400)
+      beam = 460;
+    const double bearing = beam * 0.5 * kPi / 180.0;
+    open.col (k) << range (beam) * std::cos (bearing), range (beam) * std::sin (bearing);
+  }
+  const std::vector<int> order = pcl_crf::beamOrder (open);
+  EXPECT_EQ (order.front (), 650);  // beam 460: 470 + 650 − 720 + 60 left out
 }
 
 TEST (BeamOrder, AClockwiseScanIsReadBackwards)

@@ -45,7 +45,13 @@ constexpr double kBeamOrderBacktrack = 0.5;
  *  beam order clockwise; otherwise its points sorted by bearing, counter-clockwise,
  *  from the one after the widest gap between bearings (a partial field of view's
  *  back), points at the origin first and equal bearings in their index order
- *  (decreasing when the scan's bearings go mostly clockwise). A scan and the same scan
+ *  (decreasing when the scan's bearings go mostly clockwise). A scan whose listing
+ *  starts between two neighbouring beams that both returned (a 360° laser listing its
+ *  circle from any beam) starts instead after its widest break: the widest gap between
+ *  the bearings of neighbouring points (a sector without a return), or, with a return
+ *  on every beam, the widest jump between neighbouring points. Its chains are then cut
+ *  where its surfaces break, from whichever such beam the listing starts, and not
+ *  through the object in front of that beam. A scan and the same scan
  *  listed the other way round are read alike, but for a scan whose steps all go no way
  *  (every point on one bearing), which is read as listed.
  *
