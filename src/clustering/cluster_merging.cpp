@@ -138,10 +138,17 @@ checkSizes (const Eigen::MatrixXd& p, const std::vector<int>& labels)
 void
 keepClusters (const std::vector<int>& kept, Eigen::MatrixXd& marginals, std::vector<int>& labels)
 {
+  if (static_cast<Eigen::Index> (labels.size ()) != marginals.cols ())
+    throw std::invalid_argument ("[pcl_crf::clustering::keepClusters] " + std::to_string (labels.size ()) +
+                                 " labels for " + std::to_string (marginals.cols ()) + " nodes' marginals");
   std::vector<int> new_index (static_cast<std::size_t> (marginals.rows ()), -1);
   Eigen::MatrixXd reduced (static_cast<Eigen::Index> (kept.size ()), marginals.cols ());
   for (std::size_t k = 0; k < kept.size (); ++k)
   {
+    if (kept[k] < 0 || kept[k] >= marginals.rows () || new_index[kept[k]] >= 0)
+      throw std::invalid_argument ("[pcl_crf::clustering::keepClusters] kept cluster " + std::to_string (kept[k]) +
+                                   " is not one of the " + std::to_string (marginals.rows ()) +
+                                   " clusters, or is kept twice");
     new_index[kept[k]] = static_cast<int> (k);
     reduced.row (k) = marginals.row (kept[k]);
   }

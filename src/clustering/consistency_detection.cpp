@@ -1,5 +1,6 @@
 #include <pcl_crf/clustering/consistency_detection.h>
 #include <pcl_crf/clustering/scan_segmentation.h>
+#include <pcl_crf/io/dataset_io.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -8,6 +9,7 @@
 #include <utility>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace clustering {
@@ -17,9 +19,11 @@ namespace {
 void
 validate (const SensorInfo& sensor, const ConsistencyParameters& p)
 {
-  if (sensor.beam_count < 1 || !(sensor.angle_increment > 0.0))
-    throw std::invalid_argument ("[pcl_crf::clustering::detectDynamicSegments] the sensor needs beam_count >= 1 "
-                                 "and angle_increment > 0");
+  if (sensor.beam_count < 1 || sensor.beam_count > kMaxBeamCount || !(sensor.angle_increment > 0.0) ||
+      !std::isfinite (sensor.angle_increment) || !std::isfinite (sensor.angle_min))
+    throw std::invalid_argument ("[pcl_crf::clustering::detectDynamicSegments] the sensor needs a beam_count in [1, " +
+                                 std::to_string (kMaxBeamCount) + "], a finite angle_min and a finite angle_increment "
+                                 "> 0");
   if (!(p.free_space_margin > 0.0) || p.beam_window < 0 || !(p.segment_break_distance > 0.0) ||
       !(p.min_dynamic_fraction >= 0.0 && p.min_dynamic_fraction < 1.0) || !(p.confidence_sigmas >= 0.0))
     throw std::invalid_argument ("[pcl_crf::clustering::detectDynamicSegments] invalid parameters: margin and "
@@ -84,6 +88,12 @@ freeSpaceViolations (const Eigen::Matrix2Xd& points, const Rigid2d& T_other_poin
                      const Eigen::Matrix3d* covariance)
 {
   validate (sensor, parameters);
+  if (!points.allFinite () || !other.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] the scans hold NaN or infinite points");
+  if (!T_other_points.matrix ().allFinite () || !isRotation (T_other_points))
+    throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] the motion is not a finite rigid motion");
+  if (covariance != nullptr && !covariance->allFinite ())
+    throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] the covariance has a NaN or infinite value");
   const std::vector<double> ranges = rangeImage (other, sensor);
   const auto [sigma_xy, sigma_theta] = egoDeviations (covariance);
   const double k = parameters.confidence_sigmas;

@@ -69,6 +69,10 @@ clusterScan (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, con
 Prediction
 toPrediction (const ScanClustering& clustering, const Rigid2d& fallback_T_source_target)
 {
+  if (clustering.static_cluster >= static_cast<int> (clustering.motions.size ()))
+    throw std::invalid_argument ("[pcl_crf::clustering::toPrediction] the static cluster " +
+                                 std::to_string (clustering.static_cluster) + " is not one of the " +
+                                 std::to_string (clustering.motions.size ()) + " clusters");
   Prediction prediction;
   prediction.source_cluster = clustering.source_cluster;
   prediction.cluster_motions = clustering.motions;

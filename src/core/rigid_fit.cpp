@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace {
@@ -11,6 +12,8 @@ constexpr double kTinyWeight = 1e-12;
 void
 RigidFitAccumulator::add (const Eigen::Vector2d& s, const Eigen::Vector2d& g, double w)
 {
+  if (!s.allFinite () || !g.allFinite () || !std::isfinite (w))
+    throw std::invalid_argument ("[pcl_crf::RigidFitAccumulator::add] a pair or its weight is NaN or infinite");
   w_ += w;
   sum_s_ += w * s;
   sum_g_ += w * g;
@@ -68,8 +71,10 @@ fitRigid2d (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, cons
   RigidFitAccumulator accumulator;
   for (Eigen::Index i = 0; i < source.cols (); ++i) {
     const double w = weights.size () ? weights (i) : 1.0;
-    if (!(w >= 0.0))
-      throw std::invalid_argument ("[pcl_crf::fitRigid2d] weights must be non-negative numbers");
+    if (!(w >= 0.0) || !std::isfinite (w))
+      throw std::invalid_argument ("[pcl_crf::fitRigid2d] weights must be finite non-negative numbers");
+    if (!source.col (i).allFinite () || !target.col (i).allFinite ())
+      throw std::invalid_argument ("[pcl_crf::fitRigid2d] pair " + std::to_string (i) + " has a NaN or infinite point");
     accumulator.add (source.col (i), target.col (i), w);
   }
   return accumulator.solve ();

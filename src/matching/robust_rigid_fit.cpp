@@ -4,6 +4,8 @@
 #include <Eigen/Cholesky>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 namespace matching {
@@ -142,6 +144,38 @@ closedFormFit (const WeightedPairs& pairs, const Rigid2d& T)
   return accumulator.isWellPosed () ? accumulator.solve () : T;
 }
 
+/** \throws std::invalid_argument naming robustRigidFit and the problem when the inputs
+ *  do not describe one pair per source point of these scans. */
+void
+checkFitInputs (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, const Eigen::Matrix2Xd& target_normals,
+                const Candidates& candidates, const std::vector<int>& map_matches, const Eigen::VectorXd& confidence,
+                const Rigid2d& T_start, bool reassociate)
+{
+  const auto fail = [] (const std::string& what) {
+    throw std::invalid_argument ("[pcl_crf::matching::robustRigidFit] " + what);
+  };
+  const auto n = static_cast<std::size_t> (source.cols ());
+  if (map_matches.size () != n || static_cast<std::size_t> (confidence.size ()) != n)
+    fail (std::to_string (n) + " source points, " + std::to_string (map_matches.size ()) + " matches and " +
+          std::to_string (confidence.size ()) + " confidences: give one of each per point");
+  if (target_normals.cols () != 0 && target_normals.cols () != target.cols ())
+    fail (std::to_string (target_normals.cols ()) + " normals for " + std::to_string (target.cols ()) +
+          " target points: give one per point, or none");
+  for (std::size_t i = 0; i < n; ++i)
+    if (map_matches[i] != kNoMatch && (map_matches[i] < 0 || map_matches[i] >= target.cols ()))
+      fail ("point " + std::to_string (i) + " is matched to target point " + std::to_string (map_matches[i]) + " of " +
+            std::to_string (target.cols ()));
+  if (!T_start.matrix ().allFinite ())
+    fail ("the starting motion has a NaN or infinite value");
+  if (!reassociate)
+    return;
+  if (candidates.size () != static_cast<int> (n))
+    fail (std::to_string (candidates.size ()) + " candidate lists for " + std::to_string (n) + " source points");
+  for (const int j : candidates.targets)
+    if (j < 0 || j >= target.cols ())
+      fail ("a candidate is target point " + std::to_string (j) + " of " + std::to_string (target.cols ()));
+}
+
 }  // namespace
 
 MotionGuess
@@ -176,6 +210,8 @@ motionGuessProblem (const MotionGuess& guess)
     return "the motion guess's linear part is not a rotation";
   if (!guess.information.allFinite ())
     return "the motion guess's information matrix has a NaN or infinite value";
+  if (!guess.information.isApprox (guess.information.transpose (), 1e-9))
+    return "the motion guess's information matrix is not symmetric";
   if (!std::isfinite (guess.interval) || guess.interval < 0.0)
     return "the interval between the scans must be a time >= 0 s (0: unknown), not " + std::to_string (guess.interval);
   return {};
@@ -186,6 +222,7 @@ robustRigidFit (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, 
                 const Candidates& candidates, const std::vector<int>& map_matches, const Eigen::VectorXd& confidence,
                 const Rigid2d& T_start, const MotionGuess& guess, const RobustFitParameters& parameters)
 {
+  checkFitInputs (source, target, target_normals, candidates, map_matches, confidence, T_start, parameters.reassociate);
   const bool has_prior = !guess.information.isZero (0.0);
   const bool point_to_line = parameters.metric == FitMetric::PointToLine;
   static const Eigen::Matrix2Xd no_normals;

@@ -145,9 +145,20 @@ occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>
   return surface;
 }
 
+void
+checkSegments (const char* function, const std::vector<ScanSegment>& segments, Eigen::Index points)
+{
+  for (const ScanSegment& segment : segments)
+    if (segment.begin < 0 || segment.end > points || segment.end <= segment.begin)
+      throw std::invalid_argument (std::string ("[pcl_crf::matching::") + function + "] segment [" +
+                                   std::to_string (segment.begin) + ", " + std::to_string (segment.end) +
+                                   ") is not a run of the scan's " + std::to_string (points) + " points");
+}
+
 std::vector<int>
 segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points)
 {
+  checkSegments ("segmentOfEachPoint", segments, points);
   std::vector<int> of (static_cast<std::size_t> (points), -1);
   for (std::size_t s = 0; s < segments.size (); ++s)
     for (int i = segments[s].begin; i < segments[s].end; ++i)
@@ -158,10 +169,7 @@ segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index point
 int
 longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, double step)
 {
-  if (segment.begin < 0 || segment.end > points.cols () || segment.end <= segment.begin)
-    throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] segment [" + std::to_string (segment.begin) +
-                                 ", " + std::to_string (segment.end) + ") is not a run of the scan's " +
-                                 std::to_string (points.cols ()) + " points");
+  checkSegments ("longestMissingRun", {segment}, points.cols ());
   if (!(step > 0.0))
     throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] the sensor's step must be positive, got " +
                                  std::to_string (step));
@@ -184,6 +192,7 @@ objectEnds (const Eigen::Matrix2Xd& points, const ScanSegment& segment)
 Eigen::Matrix2Xd
 segmentNormals (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments)
 {
+  checkSegments ("segmentNormals", segments, points.cols ());
   constexpr int kReach = 2;  // chord between the points two places before and after
   Eigen::Matrix2Xd normals = Eigen::Matrix2Xd::Zero (2, points.cols ());
   for (const ScanSegment& segment : segments) {

@@ -141,6 +141,7 @@ endAlignments (const Eigen::Vector2d& start, const Eigen::Vector2d& finish, cons
                const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
                const SegmentMotionParameters& parameters)
 {
+  checkSegments ("endAlignments", target_segments, target_scan.cols ());
   std::vector<Eigen::Vector2d> hypotheses (1, Eigen::Vector2d::Zero ());  // the current motion itself
   const double max_squared = parameters.max_displacement * parameters.max_displacement;
   for (const ScanSegment& t : target_segments) {
@@ -162,6 +163,7 @@ segmentMotionHypotheses (const Eigen::Matrix2Xd& source_scan, const Eigen::Matri
                          const Eigen::Matrix2Xd& target_scan, const std::vector<ScanSegment>& target_segments,
                          const KnnIndex& target_index, const SegmentMotionParameters& parameters)
 {
+  checkSegments ("segmentMotionHypotheses", target_segments, target_scan.cols ());
   SegmentMotions motions;
   const Eigen::Index n = source_scan.cols ();
   motions.translation.setZero (2, n);

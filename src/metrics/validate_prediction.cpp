@@ -61,11 +61,29 @@ checkClustering (const ScanPair& truth, const Prediction& prediction)
   }
 }
 
+/** The motions a prediction states: finite rigid motions, and a static cluster among its clusters. */
+void
+checkMotions (const Prediction& prediction)
+{
+  const auto rigid = [] (const Rigid2d& T) { return T.matrix ().allFinite () && isRotation (T); };
+  if (!rigid (prediction.T_source_target))
+    fail ("prediction.T_source_target is not a finite rigid motion (NaN, infinite, or no rotation)");
+  for (std::size_t c = 0; c < prediction.cluster_motions.size (); ++c)
+    if (!rigid (prediction.cluster_motions[c]))
+      fail ("prediction.cluster_motions[" + std::to_string (c) +
+            "] is not a finite rigid motion (NaN, infinite, or no rotation)");
+  if (prediction.static_cluster < -1 ||
+      prediction.static_cluster >= static_cast<int> (prediction.cluster_motions.size ()))
+    fail ("prediction.static_cluster is " + std::to_string (prediction.static_cluster) + ", not -1 or one of the " +
+          std::to_string (prediction.cluster_motions.size ()) + " clusters");
+}
+
 }  // namespace
 
 void
 validatePrediction (const ScanPair& truth, const Prediction& prediction)
 {
+  checkMotions (prediction);
   if (!prediction.source_match.empty ())
     checkAssociation (truth, prediction);
   if (!prediction.source_cluster.empty ())

@@ -55,8 +55,14 @@ std::vector<ScanSegment>
 segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise,
              BeamGaps gaps = BeamGaps::Measured, int max_missing_returns = -1);
 
+/** \brief Throws std::invalid_argument naming \a function when a segment of
+ *  \a segments is not a run [begin, end), begin < end, of a scan of \a points points. */
+void
+checkSegments (const char* function, const std::vector<ScanSegment>& segments, Eigen::Index points);
+
 /** \brief The index into \a segments of every one of \a points points (−1 for a point
- *  in none of them). */
+ *  in none of them). \throws std::invalid_argument for a segment outside the scan
+ *  (checkSegments ()). */
 std::vector<int>
 segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index points);
 

@@ -15,6 +15,8 @@ namespace pcl_crf {
  *   - source_cluster: truth.source_object has one entry per source point, each
  *     id declared in truth.objects, and every label is kOutlierCluster or lies
  *     in [0, cluster_motions.size ()).
+ *  T_source_target and every cluster motion must be finite rigid motions (a NaN
+ *  motion would score as no error), and static_cluster −1 or one of the clusters.
  *
  *  \throws std::invalid_argument naming the first violation and the sizes involved.
  */
