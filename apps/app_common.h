@@ -67,6 +67,10 @@ checkOptions (int argc, char** argv, const std::set<std::string>& value_options,
         pcl::console::print_error ("Option %s needs a value (see %s -h).\n", arg.c_str (), argv[0]);
         return false;
       }
+      if (argv[i + 1][0] == '\0') {  // "$UNSET_VARIABLE": every option would silently do nothing
+        pcl::console::print_error ("Option %s is given an empty value (see %s -h).\n", arg.c_str (), argv[0]);
+        return false;
+      }
       ++i;
     }
     else if (looksLikeOption (arg) && !switches.count (arg)) {

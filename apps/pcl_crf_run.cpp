@@ -75,7 +75,8 @@ printHelp (const char* program)
               "                         and DIR/ego_motion.csv, one row per pair (default: none)\n");
   print_info ("  --csv FILE             write only the per-pair CSV (the columns of ego_motion.csv) to FILE\n");
   print_info ("  --save-pairs DIR       write the pairs as a labelled dataset (implies --label; needs\n"
-              "                         reference poses) for pcl_crf_eval and pcl_crf_viewer (default: none)\n");
+              "                         reference poses) for pcl_crf_eval and pcl_crf_viewer into DIR, a new\n"
+              "                         or empty folder (default: none)\n");
   print_info ("  -q                     no progress bar\n");
   print_info ("  --list-methods         print the known methods, one per line, and exit\n");
   print_info ("  -h                     this help\n\n");
@@ -288,6 +289,10 @@ run (const RunArguments& args)
     throw std::invalid_argument ("no scan pair: the log has " + std::to_string (log.scans.size ()) +
                                  " scans, --start is " + std::to_string (start) + " and --step " +
                                  std::to_string (step));
+  if (!args.save_pairs.empty () && fs::exists (args.save_pairs) &&
+      (!fs::is_directory (args.save_pairs) || !fs::is_empty (args.save_pairs)))
+    throw std::invalid_argument ("--save-pairs " + args.save_pairs + " is not a new or empty folder: pcl_crf_eval "
+                                 "would score the pairs already there with this log's");
   auto method = prepareMethod (args);
 
   std::ofstream csv;

@@ -131,6 +131,11 @@ TEST_F (ToolRun, StepStartMaxPairsAndSavedPairs)
   const pcl_crf::ScanPair pair = pcl_crf::loadScanPair ((pairs / "scan_000003").string ());
   EXPECT_TRUE (pair.hasTruth ());
   EXPECT_EQ (pair.sensor.beam_count, 361);
+  // Saved again into the same folder, another log's pairs would mix with these.
+  const auto again = runTool ("pcl_crf_run", log () + " --max-pairs 1 -q --save-pairs " + pairs.string ());
+  EXPECT_EQ (again.exit_code, 1);
+  EXPECT_NE (again.output.find ("is not a new or empty folder"), std::string::npos) << again.output;
+  EXPECT_EQ (pcl_crf::listScanPairs (pairs.string ()).size (), 2u);
 }
 
 TEST_F (ToolRun, ScansStampedOutOfOrderAreCountedAndTheirPairsHaveNoInterval)
@@ -229,6 +234,7 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
       {log () + " --min-range 5 --max-range 1", "0 <= min < max"},
       {log () + " extra", "Expected one log file, got 2"},
       {log () + " -o", "-o needs a value"},
+      {log () + " -o ''", "Option -o is given an empty value"},  // wrote nothing, exit 0
       {log () + " --bogus", "Unknown option '--bogus' (see "},
       {log () + " --csv --method icp", "Option --csv needs a value"},
       {log () + " --stationary", "has reference poses: give one or the other"},
