@@ -74,6 +74,14 @@ rotationAngle (const Rigid2d& T)
   return std::atan2 (T.linear () (1, 0), T.linear () (0, 0));
 }
 
+double
+yawOfQuaternion (double w, double x, double y, double z)
+{
+  // atan2 (2 (wz + xy), 1 − 2 (y² + z²)) for a unit quaternion, the 1 its squared norm:
+  // both arguments scale with it.
+  return std::atan2 (2.0 * (w * z + x * y), w * w + x * x - y * y - z * z);
+}
+
 Eigen::Vector3d
 toXYTheta (const Rigid2d& T)
 {

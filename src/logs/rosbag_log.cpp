@@ -33,7 +33,7 @@ using StampedPoses = std::vector<std::pair<double, Rigid2d>>;
 double
 yawOf (const geometry_msgs::Quaternion& q)
 {
-  return std::atan2 (2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+  return yawOfQuaternion (q.w, q.x, q.y, q.z);
 }
 
 void

@@ -26,6 +26,18 @@ TEST (Rigid2d, AngleWrapsIntoMinusPiPi)
   EXPECT_NEAR (pcl_crf::rotationAngle (pcl_crf::makeRigid2d (0, 0, 3 * M_PI / 2)), -M_PI / 2, 1e-12);
 }
 
+TEST (Rigid2d, TheYawOfAQuaternionOfAnyNorm)
+{
+  // A rotation of 0.3 rad about z, as a unit quaternion and scaled by 2 (a pose topic's
+  // quaternion off unit length read 0.036 rad for 0.009 with the unit-length formula).
+  const double w = std::cos (0.15), z = std::sin (0.15);
+  EXPECT_NEAR (pcl_crf::yawOfQuaternion (w, 0.0, 0.0, z), 0.3, 1e-15);
+  EXPECT_NEAR (pcl_crf::yawOfQuaternion (2.0 * w, 0.0, 0.0, 2.0 * z), 0.3, 1e-15);
+  EXPECT_NEAR (pcl_crf::yawOfQuaternion (0.5 * w, 0.0, 0.0, 0.5 * z), 0.3, 1e-15);
+  // A half turn (w = 0), scaled by 3.
+  EXPECT_NEAR (std::abs (pcl_crf::yawOfQuaternion (0.0, 0.0, 0.0, 3.0)), M_PI, 1e-15);
+}
+
 TEST (ScanPair, LooksUpObjectsById)
 {
   pcl_crf::ScanPair pair;

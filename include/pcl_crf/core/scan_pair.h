@@ -122,4 +122,10 @@ toXYTheta (const Rigid2d& T);
 double
 rotationAngle (const Rigid2d& T);
 
+/** \brief The yaw [rad] of the rotation given by the quaternion (w, x, y, z) of any
+ *  non-zero norm (a pose message's quaternion may be rounded, or scaled, off unit
+ *  length: the unit-length formula then read 0.036 rad for 0.009). */
+double
+yawOfQuaternion (double w, double x, double y, double z);
+
 }  // namespace pcl_crf
