@@ -259,6 +259,7 @@ run (const RunArguments& args)
 {
   pcl::console::TicToc wall;
   wall.tic ();
+  pcl_crf::apps::warnAboutOptionsTheLogIgnores (args.log_args, pcl_crf::detectLaserLogFormat (args.log));
   const pcl_crf::LaserLog log = pcl_crf::readLaserLog (args.log, args.log_args.read);
   if (!args.quiet) {
     print_highlight ("Read ");

@@ -131,6 +131,7 @@ public:
   explicit PairBrowser (const ViewerArguments& args) : args_ (args)
   {
     if (!args.log.empty ()) {
+      pcl_crf::apps::warnAboutOptionsTheLogIgnores (args.log_args, pcl_crf::detectLaserLogFormat (args.log));
       log_ = pcl_crf::readLaserLog (args.log, args.log_args.read);
       if (args.log_args.pairs.label_points && !log_->has_reference_poses)
         throw std::invalid_argument ("--label needs reference poses, and " + args.log + " has none");

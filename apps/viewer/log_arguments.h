@@ -53,6 +53,8 @@ struct LogArguments
 {
   LaserLogReadOptions read;
   LogPairOptions pairs;
+  /** the log options given on the command line. */
+  std::set<std::string> given;
 };
 
 /** The options of LogArguments that take a value (for positionalArguments). */
@@ -91,10 +93,30 @@ printLogOptionsHelp ()
               "                         the datmo bags: 0.025; |S| <= 60)\n");
 }
 
+/** Warns about the log options given that \a format does not read: the range limits are
+ *  CARMEN's (a bag's LaserScan carries its own range_min and range_max), the topics,
+ *  laser offset and pose delay a bag's. */
+inline void
+warnAboutOptionsTheLogIgnores (const LogArguments& args, LaserLogFormat format)
+{
+  const bool bag = format == LaserLogFormat::Rosbag;
+  const std::vector<std::string> ignored =
+      bag ? std::vector<std::string>{"--min-range", "--max-range"}
+          : std::vector<std::string>{"--scan-topic", "--pose-topic", "--object-topics", "--laser-offset", "--pose-delay"};
+  for (const std::string& option : ignored)
+    if (args.given.count (option))
+      pcl::console::print_warn ("%s applies to %s only: %s.\n", option.c_str (), bag ? "CARMEN logs" : "ROS bags",
+                                bag ? "a bag's LaserScans carry their own range_min and range_max"
+                                    : "this CARMEN log does not read it");
+}
+
 /** Reads the log options; false after a print_error. */
 inline bool
 parseLogArguments (int argc, char** argv, LogArguments& args)
 {
+  for (const std::string& option : logValueOptions ())
+    if (pcl::console::find_argument (argc, argv, option.c_str ()) >= 0)
+      args.given.insert (option);
   long step = 1;
   if (!countOption (argc, argv, "--step", step, 1))
     return false;

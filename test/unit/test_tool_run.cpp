@@ -212,6 +212,17 @@ TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)
   EXPECT_NE (run.output.find ("no topic /scan in the bag; it has: /base_scan"), std::string::npos) << run.output;
 }
 
+TEST_F (ToolRun, OptionsForTheOtherKindOfLogAreNamed)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  // A bag's options given for a CARMEN log did nothing without a word.
+  const auto run = runTool ("pcl_crf_run", log () + " --pose-delay 0.1 --max-pairs 1 -q");
+  EXPECT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("--pose-delay applies to ROS bags only"), std::string::npos) << run.output;
+  const auto plain = runTool ("pcl_crf_run", log () + " --max-range 25 --max-pairs 1 -q");
+  EXPECT_EQ (plain.output.find ("applies to"), std::string::npos) << plain.output;
+}
+
 TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
 {
   PCL_CRF_SKIP_WITHOUT_APPS ();
