@@ -55,16 +55,17 @@ logSumExpOf (int count, Term term)
   return maximum + std::log (sum);
 }
 
-/** Edge marginal p(y_i = s, y_{i+1} = t) = exp(α_i(s) + P_i(s, t) + u_{i+1}(t) + β_{i+1}(t) − log Z). */
+/** Edge marginal p(y_i = s, y_{i+1} = t) ∝ exp(α_i(s) + P_i(s, t) + u_{i+1}(t) + β_{i+1}(t)),
+ *  normalised over the table from its largest log value (the terms, each as large as the
+ *  potentials, cancel to log Z only up to their rounding: with potentials of 1e20 the
+ *  exponents came out thousands off, and the table NaN). */
 template <typename Alpha, typename Pairwise, typename Unary, typename Beta, typename Joint> void
 fillEdgeMarginal (const Alpha& alpha, const Pairwise& pairwise, const Unary& unary_next, const Beta& beta_next,
-                  double log_partition, Joint&& joint)
+                  Joint&& joint)
 {
   for (Eigen::Index t = 0; t < pairwise.cols (); ++t)
-  {
-    const double column_term = (unary_next (t) + beta_next (t)) - log_partition;
-    joint.col (t) = ((pairwise.col (t) + alpha).array () + column_term).exp ();
-  }
+    joint.col (t) = (pairwise.col (t) + alpha).array () + (unary_next (t) + beta_next (t));
+  joint = (joint.array () - joint.maxCoeff ()).exp ().matrix ();
   flushDenormals (joint.data (), joint.size ());
   joint /= joint.sum ();
 }
@@ -156,7 +157,7 @@ ChainInference::run (const PackedChainPotentials& chain, unsigned outputs)
       alpha (s) = logForward (i, s);
     for (int t = 0; t < states_[i + 1]; ++t)
       beta (t) = logBackward (i + 1, t);
-    fillEdgeMarginal (alpha, chain.pairwise (i), chain.unary (i + 1), beta, log_partition_,
+    fillEdgeMarginal (alpha, chain.pairwise (i), chain.unary (i + 1), beta,
                       Eigen::Map<Eigen::MatrixXd> (edge_marginals_.data () + edge_offset_[i], states_[i],
                                                    states_[i + 1]));
   }

@@ -216,6 +216,28 @@ TEST (ChainInference, LongChainWithLargePotentialsStaysFinite)
   EXPECT_GE (m.log_partition, map.log_score);
 }
 
+TEST (ChainSumProduct, EdgeMarginalsOfHugePotentialsAreTheNodeMarginalsJoint)
+{
+  // Potentials of 1e20 (an audit): the edge marginals came out NaN while the node
+  // marginals were right. Each edge table sums to 1 and its rows and columns to the
+  // node marginals.
+  std::mt19937 rng (5);
+  ChainPotentials chain = randomChain (5, 3, 3, 1.0, rng);
+  for (auto& u : chain.unary)
+    u *= 1e20;
+  for (auto& p : chain.pairwise)
+    p *= 1e20;
+  const pcl_crf::crf::MarginalResult m = pcl_crf::crf::sumProduct (chain, true);
+  ASSERT_EQ (m.edge_marginals.size (), 4u);
+  for (std::size_t i = 0; i < m.edge_marginals.size (); ++i) {
+    const Eigen::MatrixXd& p = m.edge_marginals[i];
+    ASSERT_TRUE (p.allFinite ()) << i;
+    EXPECT_NEAR (p.sum (), 1.0, 1e-12);
+    EXPECT_LT ((p.rowwise ().sum () - m.node_marginals[i]).cwiseAbs ().maxCoeff (), 1e-12) << i;
+    EXPECT_LT ((p.colwise ().sum ().transpose () - m.node_marginals[i + 1]).cwiseAbs ().maxCoeff (), 1e-12) << i;
+  }
+}
+
 TEST (ChainSampling, EmpiricalFrequenciesMatchMarginals)
 {
   std::mt19937 rng (11);
