@@ -43,6 +43,8 @@ evaluate (void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const in
     if (data.gradient.size () != n)
       throw std::invalid_argument ("[pcl_crf::crf::minimizeLbfgs] the objective returned a gradient of size " +
                                    std::to_string (data.gradient.size ()) + ", expected " + std::to_string (n));
+    if (std::isnan (f) || data.gradient.hasNaN ())  // the line search cannot compare NaN: it reported convergence
+      throw std::invalid_argument ("[pcl_crf::crf::minimizeLbfgs] the objective returned a NaN value or gradient");
     Eigen::Map<Eigen::VectorXd> (g, n) = data.gradient;
     if (data.first_evaluation)
       data.value = f;
@@ -125,6 +127,8 @@ validateInput (const Eigen::VectorXd& x0, const LbfgsOptions& options)
 LbfgsResult
 minimizeLbfgs (const Objective& objective, const Eigen::VectorXd& x0, const LbfgsOptions& options)
 {
+  if (!objective)
+    throw std::invalid_argument ("[pcl_crf::crf::minimizeLbfgs] no objective given");
   validateInput (x0, options);
   const int n = static_cast<int> (x0.size ());
   std::unique_ptr<lbfgsfloatval_t, void (*) (lbfgsfloatval_t*)> x (lbfgs_malloc (n), lbfgs_free);

@@ -3,12 +3,15 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace {
 
 using pcl_crf::crf::LbfgsOptions;
 using pcl_crf::crf::minimizeLbfgs;
+using pcl_crf::crf::Objective;
 
 double
 rosenbrock (const Eigen::VectorXd& x, Eigen::VectorXd& g)
@@ -80,6 +83,29 @@ TEST (LbfgsMinimizer, ObjectiveErrorsPropagate)
   auto wrong_size = [] (const Eigen::VectorXd&, Eigen::VectorXd& g) { g = Eigen::VectorXd::Ones (5); return 1.0; };
   EXPECT_THROW (minimizeLbfgs (wrong_size, Eigen::VectorXd::Ones (2)), std::invalid_argument);
   EXPECT_THROW (minimizeLbfgs (rosenbrock, Eigen::VectorXd ()), std::invalid_argument);
+}
+
+TEST (LbfgsMinimizer, ANaNObjectiveOrNoObjectiveIsAnError)
+{
+  // A NaN gradient was reported as "converged: the initial point already minimises".
+  auto nan_gradient = [] (const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    g = Eigen::VectorXd::Constant (x.size (), std::nan (""));
+    return x.squaredNorm ();
+  };
+  auto nan_value = [] (const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    g = 2.0 * x;
+    return std::nan ("");
+  };
+  for (const Objective& objective : {Objective (nan_gradient), Objective (nan_value)}) {
+    try {
+      minimizeLbfgs (objective, Eigen::VectorXd::Ones (2));
+      ADD_FAILURE () << "expected std::invalid_argument";
+    }
+    catch (const std::invalid_argument& e) {
+      EXPECT_NE (std::string (e.what ()).find ("returned a NaN value or gradient"), std::string::npos) << e.what ();
+    }
+  }
+  EXPECT_THROW (minimizeLbfgs (Objective (), Eigen::VectorXd::Ones (2)), std::invalid_argument);  // bad_function_call
 }
 
 }  // namespace
