@@ -118,6 +118,11 @@ parseArguments (int argc, char** argv, RunArguments& args)
 std::unique_ptr<pcl_crf::EvaluationMethod>
 prepareMethod (const RunArguments& args)
 {
+  // K-Means and CRF-Clustering alone cluster a pair's true associations (the joint
+  // paper's oracle baselines): a log's pairs carry them only when labelled.
+  if ((args.method == "kmeans" || args.method == "crf-t") && !args.log_args.pairs.label_points)
+    throw std::invalid_argument ("method '" + args.method + "' clusters the pairs' true associations: give --label "
+                                 "(the log needs reference poses), or a method that matches the scans itself");
   auto method = pcl_crf::createEvaluationMethod (args.method);
   if (!method->isLearned ())
     return method;

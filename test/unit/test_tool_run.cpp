@@ -233,6 +233,7 @@ TEST_F (ToolRun, BadArgumentsAndFilesAreClearErrors)
       {(dir_ / "missing.log").string (), "missing.log: cannot read the log: no such file"},
       {dir_.string (), "cannot read the log: is a directory, not a file"},
       {log () + " --method nonsense", "unknown method 'nonsense'"},
+      {log () + " --method kmeans", "method 'kmeans' clusters the pairs' true associations: give --label"},
       {log () + " --step 0", "--step needs a whole number >= 1"},
       {log () + " --step abc", "--step needs a decimal number, not 'abc'"},
       {log () + " --max-pairs -2", "--max-pairs needs a whole number >= 0"},
