@@ -1,6 +1,8 @@
 #include <pcl_crf/core/repeated_points.h>
 
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 namespace pcl_crf {
@@ -72,6 +74,9 @@ firstCopyColumns (const std::vector<int>& first)
   int count = 0;
   for (std::size_t i = 0; i < first.size (); ++i) {
     const auto f = static_cast<std::size_t> (first[i]);
+    if (first[i] < 0 || f > i || static_cast<std::size_t> (first[f]) != f)
+      throw std::invalid_argument ("[pcl_crf::firstCopyColumns] point " + std::to_string (i) + "'s first copy " +
+                                   std::to_string (first[i]) + " is not a first copy at or before it");
     column[i] = f == i ? count++ : column[f];
   }
   return column;

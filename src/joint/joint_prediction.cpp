@@ -1,6 +1,8 @@
 #include <pcl_crf/clustering/scan_segmentation.h>
 #include <pcl_crf/joint/joint_estimation.h>
 
+#include "cluster_numbering.h"
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@ constexpr double kBreakDistance = 0.5;
 Prediction
 toPrediction (const Eigen::Matrix2Xd& source, const joint::JointResult& result)
 {
+  detail::checkResultAgainstSource ("toPrediction", source, result);  // its clusters, static cluster and sizes
   Prediction prediction;
   prediction.source_match = result.source_match;
   std::vector<bool> moved_away (result.source_cluster.size (), false);

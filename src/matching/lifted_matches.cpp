@@ -145,8 +145,13 @@ std::vector<int>
 liftLabels (const std::vector<int>& anchors, const std::vector<int>& coarse_labels)
 {
   std::vector<int> labels (anchors.size ());
-  for (std::size_t i = 0; i < anchors.size (); ++i)
-    labels[i] = coarse_labels.at (static_cast<std::size_t> (anchors[i]));
+  for (std::size_t i = 0; i < anchors.size (); ++i) {
+    if (anchors[i] < 0 || static_cast<std::size_t> (anchors[i]) >= coarse_labels.size ())
+      throw std::invalid_argument ("[pcl_crf::matching::liftLabels] point " + std::to_string (i) + " is anchored to " +
+                                   std::to_string (anchors[i]) + ", not one of the " +
+                                   std::to_string (coarse_labels.size ()) + " labelled points");
+    labels[i] = coarse_labels[static_cast<std::size_t> (anchors[i])];
+  }
   return labels;
 }
 

@@ -128,6 +128,10 @@ limitToInterval (SegmentMotionParameters parameters, double interval)
 double
 pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end)
 {
+  if (begin < 0 || end > points.cols () || i < begin || i >= end)
+    throw std::invalid_argument ("[pcl_crf::matching::pointSpacing] point " + std::to_string (i) + " is not in the run [" +
+                                 std::to_string (begin) + ", " + std::to_string (end) + ") of the scan's " +
+                                 std::to_string (points.cols ()) + " points");
   double spacing = 0.0;
   if (i > begin)
     spacing = (points.col (i) - points.col (i - 1)).norm ();

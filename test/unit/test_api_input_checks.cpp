@@ -4,7 +4,10 @@
 #include <pcl_crf/clustering/cluster_merging.h>
 #include <pcl_crf/clustering/consistency_detection.h>
 #include <pcl_crf/clustering/scan_clustering.h>
+#include <pcl_crf/core/repeated_points.h>
 #include <pcl_crf/core/rigid_fit.h>
+#include <pcl_crf/joint/joint_estimation.h>
+#include <pcl_crf/matching/lifted_matches.h>
 #include <pcl_crf/matching/robust_rigid_fit.h>
 #include <pcl_crf/matching/scan_segments.h>
 #include <pcl_crf/matching/segment_motions.h>
@@ -174,6 +177,32 @@ TEST (ApiInputChecks, APredictionsMotionsMustBeFiniteRigidMotions)
   Prediction no_such_static = prediction;
   no_such_static.static_cluster = 4;
   expectInvalid ([&] { validatePrediction (truth, no_such_static); }, "prediction.static_cluster is 4");
+}
+
+TEST (ApiInputChecks, IndicesOfLiftsAndSpacingsOutsideTheirRangeAreNamed)
+{
+  // Each read out of bounds (a raw std::out_of_range from liftLabels).
+  expectInvalid ([] { matching::liftLabels ({0, 5}, {1, 2}); }, "point 1 is anchored to 5, not one of the 2");
+  expectInvalid ([] { matching::liftLabels ({-4}, {1, 2}); }, "point 0 is anchored to -4");
+  EXPECT_EQ (firstCopyColumns ({0, 1, 0, 1, 4}), (std::vector<int>{0, 1, 0, 1, 2}));
+  expectInvalid ([] { firstCopyColumns ({0, 5, -3, 1}); }, "point 1's first copy 5 is not a first copy");
+  const Eigen::Matrix2Xd scan = arc (5);
+  EXPECT_GT (matching::pointSpacing (scan, 2, 0, 5), 0.0);
+  expectInvalid ([&] { matching::pointSpacing (scan, 10, 0, 5); }, "point 10 is not in the run [0, 5)");
+  expectInvalid ([&] { matching::pointSpacing (scan, -1, 0, 5); }, "point -1 is not in the run [0, 5)");
+}
+
+TEST (ApiInputChecks, AJointResultOutsideItsClustersIsNamed)
+{
+  joint::JointResult result;
+  result.source_match.assign (3, kNoMatch);
+  result.source_cluster = {0, 0, 99};  // copied into the prediction before
+  result.cluster_motions = {Rigid2d::Identity ()};
+  result.static_cluster = 0;
+  expectInvalid ([&] { joint::toPrediction (arc (3), result); }, "point 2 is in cluster 99 of 1");
+  result.source_cluster = {0, 0, 0};
+  result.static_cluster = 42;
+  expectInvalid ([&] { joint::toPrediction (arc (3), result); }, "the static cluster 42 is not one of the 1");
 }
 
 }  // namespace

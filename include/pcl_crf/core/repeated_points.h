@@ -34,7 +34,8 @@ std::vector<int>
 firstCopies (const std::vector<int>& first);
 
 /** \brief Per point of \a first (firstOfEqualPoints ()): the column its first copy holds
- *  among the first copies alone (firstCopies ()), where a result on them is found. */
+ *  among the first copies alone (firstCopies ()), where a result on them is found.
+ *  \throws std::invalid_argument when an entry is not a first copy at or before its point. */
 std::vector<int>
 firstCopyColumns (const std::vector<int>& first);
 

@@ -533,7 +533,9 @@ markPointsThatMovedAway (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd&
  *  labelled neighbour in the same distance segment (as CRF-M labels points without
  *  an association, so that both are scored alike; the points that moved away are
  *  labelled kOutlierCluster, so an outlier nearest them stays one too), the motions,
- *  the static cluster and the sensor's motion. */
+ *  the static cluster and the sensor's motion.
+ *  \throws std::invalid_argument when the result's clusters or static cluster are not
+ *  those of its motions, or it holds no entry per source point. */
 Prediction
 toPrediction (const Eigen::Matrix2Xd& source, const JointResult& result);
 

@@ -40,7 +40,8 @@ thinPair (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, double
 std::vector<int>
 thinnedAnchors (const Eigen::Matrix2Xd& source, const ThinnedScan& thinned);
 
-/** \brief Per full source point, its anchor's label (cluster, outlier flag, …). */
+/** \brief Per full source point, its anchor's label (cluster, outlier flag, …).
+ *  \throws std::invalid_argument for an anchor that is not a labelled point. */
 std::vector<int>
 liftLabels (const std::vector<int>& anchors, const std::vector<int>& coarse_labels);
 

@@ -87,7 +87,8 @@ SegmentMotionParameters
 limitToInterval (SegmentMotionParameters parameters, double interval);
 
 /** \brief The larger distance from point i to its neighbours i − 1 and i + 1 within
- *  the run [begin, end) of \a points (0 when it has none there) [m]. */
+ *  the run [begin, end) of \a points (0 when it has none there) [m].
+ *  \throws std::invalid_argument when i is not in the run, or the run not in the scan. */
 double
 pointSpacing (const Eigen::Matrix2Xd& points, Eigen::Index i, Eigen::Index begin, Eigen::Index end);
 
