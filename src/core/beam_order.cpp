@@ -166,13 +166,16 @@ startAfterTheWidestBreak (const Eigen::Matrix2Xd& points, std::vector<int>& orde
   const std::size_t n = order.size ();
   if (n < 3)
     return;
-  std::vector<double> gaps (n);  // counter-clockwise from point k − 1 (the last, for k = 0) to point k
+  std::vector<double> bearings (n);
   for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d a = points.col (order[(k + n - 1) % n]), b = points.col (order[k]);
-    if (!hasBearing (a) || !hasBearing (b))
+    const Eigen::Vector2d point = points.col (order[k]);
+    if (!hasBearing (point))
       return;  // no bearing to order by: read as listed
-    gaps[k] = wrapped (std::atan2 (b.y (), b.x ()) - std::atan2 (a.y (), a.x ()));
+    bearings[k] = std::atan2 (point.y (), point.x ());
   }
+  std::vector<double> gaps (n);  // counter-clockwise from point k − 1 (the last, for k = 0) to point k
+  for (std::size_t k = 0; k < n; ++k)
+    gaps[k] = wrapped (bearings[k] - bearings[(k + n - 1) % n]);
   std::vector<double> steps (gaps.begin () + 1, gaps.end ());
   const auto middle = steps.begin () + static_cast<long> (steps.size () / 2);
   std::nth_element (steps.begin (), middle, steps.end ());

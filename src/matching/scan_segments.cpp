@@ -145,14 +145,25 @@ occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>
   return surface;
 }
 
+namespace {
+
+/** checkSegments () of one segment, without a vector to hold it (longestMissingRun runs per segment). */
+void
+checkSegment (const char* function, const ScanSegment& segment, Eigen::Index points)
+{
+  if (segment.begin < 0 || segment.end > points || segment.end <= segment.begin)
+    throw std::invalid_argument (std::string ("[pcl_crf::matching::") + function + "] segment [" +
+                                 std::to_string (segment.begin) + ", " + std::to_string (segment.end) +
+                                 ") is not a run of the scan's " + std::to_string (points) + " points");
+}
+
+}  // namespace
+
 void
 checkSegments (const char* function, const std::vector<ScanSegment>& segments, Eigen::Index points)
 {
   for (const ScanSegment& segment : segments)
-    if (segment.begin < 0 || segment.end > points || segment.end <= segment.begin)
-      throw std::invalid_argument (std::string ("[pcl_crf::matching::") + function + "] segment [" +
-                                   std::to_string (segment.begin) + ", " + std::to_string (segment.end) +
-                                   ") is not a run of the scan's " + std::to_string (points) + " points");
+    checkSegment (function, segment, points);
 }
 
 std::vector<int>
@@ -169,7 +180,7 @@ segmentOfEachPoint (const std::vector<ScanSegment>& segments, Eigen::Index point
 int
 longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, double step)
 {
-  checkSegments ("longestMissingRun", {segment}, points.cols ());
+  checkSegment ("longestMissingRun", segment, points.cols ());
   if (!(step > 0.0))
     throw std::invalid_argument ("[pcl_crf::matching::longestMissingRun] the sensor's step must be positive, got " +
                                  std::to_string (step));
