@@ -226,6 +226,7 @@ clusterPointPairs (const PointPairs& pairs, const Eigen::VectorXd& weights, cons
 
   // Sec. IV-D: over-segment the scan, one cluster per segment.
   result.labels = segmentByDistance (pairs.source, parameters.segment_break_distance, segmentCap (pairs, parameters));
+  mergeNarrowestBreaks (pairs.source, parameters.max_initial_clusters, result.labels);  // every round costs S x n
   int cluster_count = result.labels.back () + 1;
   result.initial_clusters = cluster_count;
 

@@ -1,8 +1,10 @@
 #include <pcl_crf/clustering/scan_segmentation.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace pcl_crf {
 namespace clustering {
@@ -80,6 +82,41 @@ segmentByDistance (const Eigen::Matrix2Xd& points, double break_distance, int ma
     ++length;
   }
   return segment;
+}
+
+void
+mergeNarrowestBreaks (const Eigen::Matrix2Xd& points, int max_segments, std::vector<int>& segment)
+{
+  const char* where = "[pcl_crf::clustering::mergeNarrowestBreaks] ";
+  if (max_segments < 1)
+    throw std::invalid_argument (std::string (where) + "max_segments must be >= 1, got " + std::to_string (max_segments));
+  if (segment.size () != static_cast<std::size_t> (points.cols ()))
+    throw std::invalid_argument (std::string (where) + std::to_string (segment.size ()) + " segment indices for " +
+                                 std::to_string (points.cols ()) + " points");
+  std::vector<std::pair<double, std::size_t>> breaks;  // (−width, first point after the break)
+  for (std::size_t i = 0; i < segment.size (); ++i)
+  {
+    const int previous = i == 0 ? 0 : segment[i - 1];
+    if (segment[i] != previous && (i == 0 || segment[i] != previous + 1))
+      throw std::invalid_argument (std::string (where) + "segment index " + std::to_string (segment[i]) + " at point " +
+                                   std::to_string (i) + " does not follow " + std::to_string (previous));
+    if (i > 0 && segment[i] != previous)
+      breaks.emplace_back (-(points.col (i) - points.col (i - 1)).squaredNorm (), i);
+  }
+  if (breaks.size () < static_cast<std::size_t> (max_segments))
+    return;
+  const auto kept_end = breaks.begin () + (max_segments - 1);
+  std::nth_element (breaks.begin (), kept_end, breaks.end ());  // pairs order ties by scan order
+  std::vector<bool> starts (segment.size (), false);
+  for (auto b = breaks.begin (); b != kept_end; ++b)
+    starts[b->second] = true;
+  int current = 0;
+  for (std::size_t i = 0; i < segment.size (); ++i)
+  {
+    if (starts[i])
+      ++current;
+    segment[i] = current;
+  }
 }
 
 std::vector<int>

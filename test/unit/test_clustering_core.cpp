@@ -39,6 +39,36 @@ TEST (ClusteringSegmentation, BreaksAtGapsAndCapsSegmentLength)
   EXPECT_THROW (segmentByDistance (points, 0.0), std::invalid_argument);
 }
 
+TEST (ClusteringSegmentation, MergesTheNarrowestBreaksBeyondTheMostSegments)
+{
+  // Breaks of 0.9 m (before point 2), 1.9 m (point 4) and 0.45 m (point 6).
+  const Eigen::Matrix2Xd points = pointsOnX ({0.0, 0.1, 1.0, 1.1, 3.0, 3.05, 3.5});
+  const std::vector<int> segments = segmentByDistance (points, 0.3);
+  ASSERT_EQ (segments, (std::vector<int>{0, 0, 1, 1, 2, 2, 3}));
+  std::vector<int> segment = segments;
+  mergeNarrowestBreaks (points, 3, segment);
+  EXPECT_EQ (segment, (std::vector<int>{0, 0, 1, 1, 2, 2, 2}));
+  mergeNarrowestBreaks (points, 2, segment);
+  EXPECT_EQ (segment, (std::vector<int>{0, 0, 0, 0, 1, 1, 1}));
+  mergeNarrowestBreaks (points, 1, segment);
+  EXPECT_EQ (segment, std::vector<int> (7, 0));
+  segment = segments;
+  mergeNarrowestBreaks (points, 4, segment);
+  EXPECT_EQ (segment, segments);
+  // Equal breaks: the first ones in scan order stay.
+  const Eigen::Matrix2Xd even = pointsOnX ({0.0, 1.0, 2.0, 3.0});
+  segment = segmentByDistance (even, 0.5);
+  mergeNarrowestBreaks (even, 2, segment);
+  EXPECT_EQ (segment, (std::vector<int>{0, 1, 1, 1}));
+
+  segment = segments;
+  EXPECT_THROW (mergeNarrowestBreaks (points, 0, segment), std::invalid_argument);
+  std::vector<int> short_list{0, 0};
+  EXPECT_THROW (mergeNarrowestBreaks (points, 3, short_list), std::invalid_argument);
+  for (std::vector<int> bad : {std::vector<int>{1, 1, 1, 1}, std::vector<int>{0, 2, 2, 2}, std::vector<int>{0, 1, 0, 1}})
+    EXPECT_THROW (mergeNarrowestBreaks (even, 3, bad), std::invalid_argument);
+}
+
 TEST (ClusteringSegmentation, CompletesLabelsFromTheNearestLabelledPointOfTheSegment)
 {
   // Two segments; the second holds no labelled point and gets the default label 7.

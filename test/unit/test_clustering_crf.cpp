@@ -444,4 +444,26 @@ TEST (CrfClustering, ALongScanStartsFromABoundedNumberOfClusters)
   EXPECT_THROW (clusterPointPairs (pairs, typicalWeights (), parameters), std::invalid_argument);
 }
 
+TEST (CrfClustering, ScatteredPairsStartFromABoundedNumberOfClusters)
+{
+  // 3 000 pairs scattered over 40 m x 40 m, every one its own segment at 0.5 m: the
+  // bound on pairs per cluster cannot join them, and 3 000 initial clusters cost
+  // 3 000 x 3 000 per round (20 000 such pairs took over 600 s and 3 GB).
+  const int n = 3000;
+  std::mt19937 rng (7);
+  std::uniform_real_distribution<double> coordinate (-20.0, 20.0);
+  Eigen::Matrix2Xd source (2, n);
+  for (int i = 0; i < n; ++i)
+    source.col (i) << coordinate (rng), coordinate (rng);
+  std::vector<int> match (n);
+  std::iota (match.begin (), match.end (), 0);
+  const Rigid2d ego = makeRigid2d (0.1, 0.0, 0.01);
+  const Eigen::Matrix2Xd target = (ego.linear () * source).colwise () + ego.translation ();
+  const PointPairs pairs = makePointPairs (source, target, match);
+  const CrfClusteringResult result = clusterPointPairs (pairs, typicalWeights (), CrfClusteringParameters ());
+  EXPECT_EQ (result.initial_clusters, 256);
+  ASSERT_EQ (result.motions.size (), 1u);
+  EXPECT_LT (motionError (result.motions[0], ego).first, 1e-6);
+}
+
 }  // namespace

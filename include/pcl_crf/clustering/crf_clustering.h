@@ -54,8 +54,11 @@ struct CrfClusteringParameters
   int max_segment_points = 20;
   /** at most this many initial clusters: on a scan of more than max_segment_points times
    *  as many pairs, an initial cluster holds up to ⌈n / max_initial_clusters⌉ pairs
-   *  instead (every round costs clusters × pairs: 100 000 pairs in 5 000 clusters took
-   *  minutes); ≥ 1, default 256, which no scan of up to 5 120 pairs reaches. */
+   *  instead, and when the breaks at segment_break_distance still make more, the
+   *  segments stay apart only at their max_initial_clusters − 1 widest breaks
+   *  (mergeNarrowestBreaks ()). Every round costs clusters × pairs: 100 000 pairs in
+   *  5 000 clusters took minutes, 20 000 scattered pairs (one segment each) took over
+   *  600 s and 3 GB. ≥ 1, default 256. */
   int max_initial_clusters = 256;
 
   // ---- iterations

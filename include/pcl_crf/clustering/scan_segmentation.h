@@ -26,6 +26,25 @@ namespace clustering {
 std::vector<int>
 segmentByDistance (const Eigen::Matrix2Xd& points, double break_distance, int max_segment_points = 0);
 
+/** \brief Joins consecutive segments until at most \a max_segments remain: the
+ *  segments stay apart at their \a max_segments − 1 widest breaks (the distance
+ *  between the last point of a segment and the first of the next; of equal ones the
+ *  first in scan order), and are joined at every other break.
+ *
+ *  \code
+ *  std::vector<int> segment = pcl_crf::clustering::segmentByDistance (points, 0.5, 20);
+ *  pcl_crf::clustering::mergeNarrowestBreaks (points, 256, segment);
+ *  \endcode
+ *  \param[in] points 2 x n points in scan order [m]
+ *  \param[in] max_segments the most segments to keep, ≥ 1
+ *  \param[in,out] segment segment of every point, 0, 1, ... in scan order (as
+ *  segmentByDistance () gives), renumbered 0, 1, ... in scan order
+ *  \throws std::invalid_argument when \a segment is not one non-decreasing run
+ *  0, 1, ... per point or \a max_segments < 1.
+ */
+void
+mergeNarrowestBreaks (const Eigen::Matrix2Xd& points, int max_segments, std::vector<int>& segment);
+
 /** \brief Labels every point of a scan from the labels of some of its points
  *  (the CRF nodes), for the points that have no node (no association).
  *
