@@ -34,9 +34,14 @@ flushedExp (double x)
 void
 requireFeasible (double log_value, const char* method)
 {
-  if (!std::isfinite (log_value))
-    throw std::invalid_argument (std::string ("[pcl_crf::crf::") + method +
-                                 "] every labelling of the chain is forbidden (-inf score)");
+  if (std::isfinite (log_value))
+    return;
+  const std::string where = std::string ("[pcl_crf::crf::") + method + "] ";
+  if (log_value == -std::numeric_limits<double>::infinity ())
+    throw std::invalid_argument (where + "every labelling of the chain is forbidden (-inf score), or its "
+                                 "log-potentials sum below the range of a double");
+  throw std::invalid_argument (where + "the score of the chain overflows (" + std::to_string (log_value) +
+                               "): its log-potentials sum beyond the range of a double");
 }
 
 /** log Σ_k exp(term (k)) for k < count, by log-sum-exp (the log-space path of a

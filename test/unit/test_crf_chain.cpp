@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -174,6 +177,33 @@ TEST (ChainInference, InfeasibleChainThrows)
   chain.pairwise = {Eigen::MatrixXd::Constant (2, 2, pcl_crf::crf::kLogZero)};
   EXPECT_THROW (pcl_crf::crf::maxProduct (chain), std::invalid_argument);
   EXPECT_THROW (pcl_crf::crf::sumProduct (chain), std::invalid_argument);
+}
+
+TEST (ChainInference, AScoreBeyondTheRangeOfADoubleIsNamedAsSuch)
+{
+  // Two nodes of potential 1e308 each: the score, 2e308, overflows. It was reported as
+  // "every labelling of the chain is forbidden".
+  ChainPotentials chain;
+  chain.unary = {Eigen::VectorXd::Constant (2, 1e308), Eigen::VectorXd::Constant (2, 1e308)};
+  chain.pairwise = {Eigen::MatrixXd::Zero (2, 2)};
+  for (const auto& infer : std::vector<std::function<void ()>>{[&] { pcl_crf::crf::maxProduct (chain); },
+                                                               [&] { pcl_crf::crf::sumProduct (chain); }})
+    try {
+      infer ();
+      ADD_FAILURE () << "no error";
+    }
+    catch (const std::invalid_argument& e) {
+      EXPECT_NE (std::string (e.what ()).find ("overflows"), std::string::npos) << e.what ();
+    }
+  chain.unary[0].setConstant (-1e308);
+  chain.unary[1].setConstant (-1e308);
+  try {
+    pcl_crf::crf::maxProduct (chain);
+    ADD_FAILURE () << "no error";
+  }
+  catch (const std::invalid_argument& e) {
+    EXPECT_NE (std::string (e.what ()).find ("below the range of a double"), std::string::npos) << e.what ();
+  }
 }
 
 TEST (ChainInference, EmptyAndSingleNodeChains)
