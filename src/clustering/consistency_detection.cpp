@@ -1,6 +1,5 @@
 #include <pcl_crf/clustering/consistency_detection.h>
 #include <pcl_crf/clustering/scan_segmentation.h>
-#include <pcl_crf/io/dataset_io.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -88,8 +87,9 @@ freeSpaceViolations (const Eigen::Matrix2Xd& points, const Rigid2d& T_other_poin
                      const Eigen::Matrix3d* covariance)
 {
   validate (sensor, parameters);
-  if (!points.allFinite () || !other.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] the scans hold NaN or infinite points");
+  for (const std::string& problem : {scanPointsProblem (points, "the scan's"), scanPointsProblem (other, "the other scan's")})
+    if (!problem.empty ())
+      throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] " + problem);
   if (!T_other_points.matrix ().allFinite () || !isRotation (T_other_points))
     throw std::invalid_argument ("[pcl_crf::clustering::freeSpaceViolations] the motion is not a finite rigid motion");
   if (covariance != nullptr && !covariance->allFinite ())

@@ -61,7 +61,8 @@ pointPairsProblem (const PointPairs& pairs)
            " source indices: one of each per pair";
   if (!pairs.source.allFinite () || !pairs.target.allFinite ())
     return "the pairs hold NaN or infinite points";
-  return {};
+  const std::string problem = scanPointsProblem (pairs.source, "the pairs' source");
+  return problem.empty () ? scanPointsProblem (pairs.target, "the pairs' target") : problem;
 }
 
 PointPairs
@@ -71,8 +72,9 @@ makePointPairs (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
   if (static_cast<Eigen::Index> (source_match.size ()) != source.cols ())
     fail (std::to_string (source_match.size ()) + " matches for " + std::to_string (source.cols ()) +
           " source points");
-  if (!source.allFinite ())
-    fail ("the source scan holds a non-finite point");
+  const std::string problem = scanPointsProblem (source, "source");
+  if (!problem.empty ())
+    fail (problem);
   std::vector<int> kept;
   for (std::size_t i = 0; i < source_match.size (); ++i)
   {
@@ -82,8 +84,9 @@ makePointPairs (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
     if (m < 0 || m >= target.cols ())
       fail ("match " + std::to_string (m) + " of source point " + std::to_string (i) + " is outside [0, " +
             std::to_string (target.cols ()) + ")");
-    if (!target.col (m).allFinite ())
-      fail ("source point " + std::to_string (i) + " matches the non-finite target point " + std::to_string (m));
+    if (!target.col (m).allFinite () || target.col (m).cwiseAbs ().maxCoeff () > kMaxCoordinate)
+      fail ("source point " + std::to_string (i) + " matches target point " + std::to_string (m) +
+            ", which has a NaN, infinite or beyond-1e18-m coordinate");
     kept.push_back (static_cast<int> (i));
   }
   PointPairs pairs;

@@ -13,12 +13,25 @@ isRotation (const Rigid2d& T)
 }
 
 std::string
+scanPointsProblem (const Eigen::Matrix2Xd& points, const std::string& name)
+{
+  for (Eigen::Index i = 0; i < points.cols (); ++i)
+    if (!points.col (i).allFinite ())
+      return name + " point " + std::to_string (i) + " has a NaN or infinite coordinate";
+    else if (points.col (i).cwiseAbs ().maxCoeff () > kMaxCoordinate)
+      return name + " point " + std::to_string (i) + " has a coordinate beyond 1e18 m";
+  return {};
+}
+
+std::string
 odometryProblem (const Odometry& odometry)
 {
   if (!odometry.T_source_target.matrix ().allFinite ())
     return "odometry has a NaN or infinite value";
   if (!isRotation (odometry.T_source_target))
     return "odometry's linear part is not a rotation";
+  if (odometry.T_source_target.translation ().cwiseAbs ().maxCoeff () > kMaxCoordinate)
+    return "odometry translation beyond 1e18 m";
   const Eigen::Matrix3d& C = odometry.covariance;
   if (!C.allFinite ())
     return "odometry covariance has a NaN or infinite value";

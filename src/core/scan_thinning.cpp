@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace pcl_crf {
 
@@ -102,7 +103,15 @@ thinningFactor (double scan_spacing, double model_spacing)
 ThinnedScan
 thinScan (const Eigen::Matrix2Xd& points, int factor, double scan_spacing)
 {
-  return factor <= 1 ? keepAll (points) : thinAlong (points, bearingsOf (points), factor, scan_spacing);
+  if (factor <= 1)
+    return keepAll (points);
+  if (!(scan_spacing > 0.0) || !std::isfinite (scan_spacing))
+    throw std::invalid_argument ("[pcl_crf::thinScan] thinning by " + std::to_string (factor) +
+                                 " beams needs the scan's beam spacing, an angle > 0 rad, not " +
+                                 std::to_string (scan_spacing));
+  if (!points.allFinite ())
+    throw std::invalid_argument ("[pcl_crf::thinScan] the scan holds NaN or infinite points");
+  return thinAlong (points, bearingsOf (points), factor, scan_spacing);
 }
 
 ThinnedScan

@@ -18,11 +18,9 @@ checkFiniteCloud (const Eigen::Matrix2Xd& cloud, const std::string& name, const 
 {
   if (cloud.cols () == 0)
     fail (where, name + " scan is empty (a pair needs at least one point in each scan)");
-  for (Eigen::Index i = 0; i < cloud.cols (); ++i)
-    if (!cloud.col (i).allFinite ())
-      fail (where, name + " point " + std::to_string (i) + " has a NaN or infinite coordinate");
-    else if (cloud.col (i).cwiseAbs ().maxCoeff () > kMaxCoordinate)
-      fail (where, name + " point " + std::to_string (i) + " has a coordinate beyond 1e18 m");
+  const std::string problem = scanPointsProblem (cloud, name);
+  if (!problem.empty ())
+    fail (where, problem);
 }
 
 void
@@ -48,8 +46,6 @@ checkOdometry (const Odometry& odometry, const std::string& where)
   const std::string problem = odometryProblem (odometry);
   if (!problem.empty ())
     fail (where, problem);
-  if (odometry.T_source_target.translation ().cwiseAbs ().maxCoeff () > kMaxCoordinate)
-    fail (where, "odometry translation beyond 1e18 m");
   if ((odometry.covariance.diagonal ().array () <= 0.0).any ())
     fail (where, "odometry covariance must have positive variances on its diagonal");
 }

@@ -32,6 +32,11 @@ checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& source, 
 void
 checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result);
 
+/** \throws std::invalid_argument, naming \a function, when a segment parameter is out of
+ *  its range (matching::segmentParametersProblem ()). */
+void
+checkSegmentParameters (const char* function, const matching::SegmentMotionParameters& parameters);
+
 /** checkResultAgainstSource () and checkResultAgainstTarget (). */
 void
 checkResultAgainstScans (const char* function, const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,

@@ -320,6 +320,14 @@ detail::checkResultAgainstSource (const char* function, const Eigen::Matrix2Xd& 
 }
 
 void
+detail::checkSegmentParameters (const char* function, const matching::SegmentMotionParameters& parameters)
+{
+  const std::string problem = matching::segmentParametersProblem (parameters);
+  if (!problem.empty ())
+    failIn (function, "the segment parameters: " + problem);
+}
+
+void
 detail::checkResultAgainstTarget (const char* function, const Eigen::Matrix2Xd& target, const JointResult& result)
 {
   checkResultClusters (function, result);
@@ -371,8 +379,9 @@ estimateJoint (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target, c
   matching::validateParameters (model.matcher.parameters);
   if (source.cols () == 0 || target.cols () == 0)
     fail ("the source and target scans must not be empty");
-  if (!source.allFinite () || !target.allFinite ())
-    fail ("the scans hold NaN or infinite points");
+  for (const std::string& problem : {scanPointsProblem (source, "source"), scanPointsProblem (target, "target")})
+    if (!problem.empty ())
+      fail (problem);
   const std::string odometry_problem = odometryProblem (odometry);
   if (!odometry_problem.empty ())
     fail (odometry_problem);

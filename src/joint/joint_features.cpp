@@ -19,6 +19,39 @@ stateTarget (const matching::Candidates& candidates, int i, int s)
   return s < candidates.count (i) ? candidates.target (i, s) : kNoMatch;
 }
 
+[[noreturn]] void
+failIn (const char* function, const std::string& what)
+{
+  throw std::invalid_argument (std::string ("[pcl_crf::joint::") + function + "] " + what);
+}
+
+void
+requireConsistent (const char* function, const LadderGeometry& geometry)
+{
+  const std::string problem = ladderGeometryProblem (geometry);
+  if (!problem.empty ())
+    failIn (function, problem);
+}
+
+/** The problem of compressed candidate rows over \a rows source and \a targets target points, or "". */
+std::string
+candidatesProblem (const matching::Candidates& candidates, int rows, Eigen::Index targets)
+{
+  const std::vector<int>& offsets = candidates.offsets;
+  if (offsets.empty () || offsets.front () != 0 || offsets.back () != static_cast<int> (candidates.targets.size ()) ||
+      !std::is_sorted (offsets.begin (), offsets.end ()))
+    return "the candidates' offsets must run from 0, non-decreasing, to their number of targets";
+  if (candidates.size () != rows)
+    return "the candidates have " + std::to_string (candidates.size ()) + " rows for " + std::to_string (rows) +
+           " source points";
+  for (int i = 0; i < rows; ++i)
+    for (int c = 0; c < candidates.count (i); ++c)
+      if (candidates.target (i, c) < 0 || candidates.target (i, c) >= targets)
+        return "candidate " + std::to_string (c) + " of source point " + std::to_string (i) + " is target point " +
+               std::to_string (candidates.target (i, c)) + " of " + std::to_string (targets);
+  return {};
+}
+
 /** The cluster-distance features log(1 + r² c_k) (CRF-Clustering's local features). */
 inline void
 residualFeatures (double squared_residual, const LadderGeometry& geometry, int i, double& spacing, double& beam)
@@ -50,10 +83,27 @@ jointWeightNames ()
   return names;
 }
 
+std::string
+ladderGeometryProblem (const LadderGeometry& geometry)
+{
+  const int n = geometry.size ();
+  const std::string problem = candidatesProblem (geometry.candidates, n, geometry.target.cols ());
+  if (!problem.empty ())
+    return problem;
+  if (geometry.inverse_scales.cols () != n || geometry.neighbour_distance.size () != std::max (n - 1, 0))
+    return std::to_string (geometry.inverse_scales.cols ()) + " inverse scales and " +
+           std::to_string (geometry.neighbour_distance.size ()) + " neighbour distances for " + std::to_string (n) +
+           " source points: give one scale per point and one distance per pair of consecutive points";
+  return {};
+}
+
 LadderGeometry
 makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
                     const matching::Candidates& candidates, double min_spacing, double min_neighbour_distance)
 {
+  const std::string problem = candidatesProblem (candidates, static_cast<int> (source.cols ()), target.cols ());
+  if (!problem.empty ())
+    failIn ("makeLadderGeometry", problem);
   LadderGeometry geometry;
   geometry.source = source;
   geometry.target = target;
@@ -92,6 +142,13 @@ void
 updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& w, int l,
                   RungPotentials& rungs)
 {
+  if (static_cast<int> (rungs.size ()) != geometry.size () || l < 0 || l + 1 >= rungs.columns () ||
+      w.size () != kJointWeightCount)
+    failIn ("updateRungColumn", std::to_string (rungs.size ()) + " rungs of " + std::to_string (rungs.columns ()) +
+                                    " columns for " + std::to_string (geometry.size ()) + " points, cluster " +
+                                    std::to_string (l) + " and " + std::to_string (w.size ()) +
+                                    " weights: give the rungs rungPotentials () sized, one of their real clusters "
+                                    "and kJointWeightCount weights");
   const double w_spacing = w (kRungSpacingResidual), w_beam = w (kRungBeamResidual);
   for (int i = 0; i < geometry.size (); ++i) {  // cluster distance w_s log(1 + r² c_s) + w_b log(1 + r² c_b)
     const Eigen::Vector2d moved = motion * geometry.source.col (i);
@@ -108,6 +165,10 @@ void
 rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& w,
                 RungPotentials& rungs)
 {
+  requireConsistent ("rungPotentials", geometry);
+  if (w.size () != kJointWeightCount)
+    failIn ("rungPotentials", "expected " + std::to_string (kJointWeightCount) + " weights, got " +
+                                  std::to_string (w.size ()));
   const int clusters = static_cast<int> (motions.size ());
   rungs.resize (geometry, clusters);
   for (int i = 0; i < geometry.size (); ++i) {  // the cluster-inlier features
@@ -124,8 +185,15 @@ rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& moti
 Eigen::VectorXd
 rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::vector<Rigid2d>& motions)
 {
+  if (i < 0 || i >= geometry.size () || i >= geometry.candidates.size () || s < 0 ||
+      s >= geometry.associationStates (i) || l < 0 || l > static_cast<int> (motions.size ()))
+    failIn ("rungFeatures", "point " + std::to_string (i) + ", association state " + std::to_string (s) +
+                                " and cluster " + std::to_string (l) + " do not fit " + std::to_string (geometry.size ()) +
+                                " points and " + std::to_string (motions.size ()) + " clusters");
   Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
   const int j = stateTarget (geometry.candidates, i, s);
+  if (j != kNoMatch && (j >= geometry.target.cols () || i >= geometry.inverse_scales.cols ()))
+    failIn ("rungFeatures", "the geometry is inconsistent: " + ladderGeometryProblem (geometry));
   const bool outlier_cluster = l == static_cast<int> (motions.size ());
   if (j == kNoMatch) {
     if (!outlier_cluster)
@@ -148,6 +216,11 @@ clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix
   const int clusters = static_cast<int> (moved_here.cols ());
   if (potential.rows () != clusters + 1 || potential.cols () != clusters + 1)
     throw std::invalid_argument ("[pcl_crf::joint::clusterEdgePotential] the potential is not (K + 1) x (K + 1)");
+  if (i < 0 || i >= geometry.neighbour_distance.size () || moved_next.cols () != clusters)
+    failIn ("clusterEdgePotential", "edge " + std::to_string (i) + " of " +
+                                        std::to_string (geometry.neighbour_distance.size ()) + ", " +
+                                        std::to_string (clusters) + " and " + std::to_string (moved_next.cols ()) +
+                                        " moved points: give an edge of the geometry and K moved points at each end");
   const double d = geometry.neighbour_distance (i);
   const double same = w (kClusterNeighbour) + w (kClusterWeightedNeighbour) / std::max (d, geometry.min_neighbour_distance);
   for (int l = 0; l < clusters; ++l) {
@@ -162,8 +235,14 @@ clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix
 Eigen::VectorXd
 clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const std::vector<Rigid2d>& motions)
 {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
   const int clusters = static_cast<int> (motions.size ());
+  if (i < 0 || i >= geometry.neighbour_distance.size () || i + 1 >= geometry.source.cols () || k < 0 || k > clusters ||
+      l < 0 || l > clusters)
+    failIn ("clusterEdgeFeatures", "edge " + std::to_string (i) + " of " +
+                                       std::to_string (geometry.neighbour_distance.size ()) + " in clusters " +
+                                       std::to_string (k) + " and " + std::to_string (l) + " of " +
+                                       std::to_string (clusters) + " (+ the outlier cluster)");
+  Eigen::VectorXd f = Eigen::VectorXd::Zero (kJointWeightCount);
   const double d = geometry.neighbour_distance (i);
   if (k == clusters || l == clusters)
     f (k == l ? kClusterOutlierRun : kClusterOutlierSwitch) = 1.0;

@@ -466,6 +466,9 @@ validate (const LadderGeometry& geometry, const crf::ChainPotentials& associatio
           const std::vector<int>& initial_cluster, const LadderOptions& options)
 {
   const int n = geometry.size ();
+  const std::string geometry_problem = ladderGeometryProblem (geometry);
+  if (!geometry_problem.empty ())
+    fail (geometry_problem);
   if (weights.size () != kJointWeightCount || !weights.allFinite ())
     fail ("expected " + std::to_string (kJointWeightCount) + " finite weights, got " + std::to_string (weights.size ()) +
           (weights.allFinite () ? "" : " holding NaN or infinite values"));

@@ -165,6 +165,7 @@ removeClustersTheStaticWorldExplains (const Eigen::Matrix2Xd& target,
                                       const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   detail::checkResultAgainstTarget ("removeClustersTheStaticWorldExplains", target, result);
+  detail::checkSegmentParameters ("removeClustersTheStaticWorldExplains", parameters);
   if (result.static_cluster < 0)
     return 0;
   const KnnIndex claimed = staticWorldTargets (target, result);
@@ -178,6 +179,7 @@ removeClustersANearerClusterExplains (const Eigen::Matrix2Xd& source, const Eige
                                       const matching::SegmentMotionParameters& parameters, JointResult& result)
 {
   detail::checkResultAgainstScans ("removeClustersANearerClusterExplains", source, target, result);
+  detail::checkSegmentParameters ("removeClustersANearerClusterExplains", parameters);
   if (result.static_cluster < 0)
     return 0;
   const std::vector<int> order = movingClustersByDisplacement (source, result);

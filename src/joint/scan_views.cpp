@@ -13,6 +13,9 @@ ScanViews::ScanViews (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& ta
                       const matching::SegmentMotionParameters& parameters, const SensorInfo& sensor)
   : source_ (source), target_ (target), parameters_ (parameters), sensor_ (sensor)
 {
+  const std::string problem = matching::segmentParametersProblem (parameters);
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::joint] the segment parameters: " + problem);
 }
 
 const std::vector<matching::ScanSegment>&

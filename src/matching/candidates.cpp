@@ -55,6 +55,11 @@ shapeEmbeddingDimension ()
 Eigen::MatrixXd
 shapeEmbedding (const Eigen::MatrixXd& shape, const Eigen::Matrix2Xd& points, double position_scale)
 {
+  if (shape.rows () != kShapeFeatureCount || shape.cols () != points.cols ())
+    throw std::invalid_argument ("[pcl_crf::matching::shapeEmbedding] " + std::to_string (shape.rows ()) + " x " +
+                                 std::to_string (shape.cols ()) + " shape features for " +
+                                 std::to_string (points.cols ()) + " points: give computeShapeFeatures of the scan (" +
+                                 std::to_string (kShapeFeatureCount) + " rows, one column per point)");
   Eigen::MatrixXd embedding (shapeEmbeddingDimension (), shape.cols ());
   embedding.topRows (kAngleRows) = shape.middleRows (kAngle1, kAngleRows);
   embedding.middleRows (kAngleRows, kDistanceRows) =
@@ -102,6 +107,10 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const ShapeNeighbours&
 std::vector<int>
 matchStates (const Candidates& candidates, const std::vector<int>& matches)
 {
+  if (static_cast<int> (matches.size ()) != candidates.size ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchStates] " + std::to_string (matches.size ()) +
+                                 " matches for the candidates of " + std::to_string (candidates.size ()) +
+                                 " source points: give one per source point");
   std::vector<int> states (static_cast<std::size_t> (candidates.size ()));
   for (int i = 0; i < candidates.size (); ++i) {
     const int c = matches[i] == kNoMatch ? -1 : candidates.find (i, matches[i]);

@@ -159,6 +159,10 @@ Eigen::Vector2i
 targetSpan (const ThinnedScan& target, Eigen::Index full_size, int kept_position)
 {
   const int last_kept = static_cast<int> (target.kept.size ()) - 1;
+  if (kept_position < 0 || kept_position > last_kept || target.kept.back () >= full_size)
+    throw std::invalid_argument ("[pcl_crf::matching::targetSpan] kept point " + std::to_string (kept_position) +
+                                 " of " + std::to_string (last_kept + 1) + " in a scan of " +
+                                 std::to_string (full_size) + " points: it must be a kept point of that scan");
   const int first = kept_position > 0 ? target.kept[kept_position - 1] + 1 : 0;
   const int last = kept_position < last_kept ? target.kept[kept_position + 1] - 1 : static_cast<int> (full_size) - 1;
   return {first, last};

@@ -56,8 +56,9 @@ void
 checkInputs (const CrfMatchingModel& model, const Eigen::Matrix2Xd& source, const MotionGuess& guess)
 {
   checkModel (model);
-  if (!source.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::matching::matchScans] the source scan holds NaN or infinite points");
+  const std::string points_problem = scanPointsProblem (source, "source");
+  if (!points_problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::matching::matchScans] " + points_problem);
   const std::string problem = motionGuessProblem (guess);
   if (!problem.empty ())
     throw std::invalid_argument ("[pcl_crf::matching::matchScans] " + problem);
@@ -242,8 +243,9 @@ matchScans (const Eigen::Matrix2Xd& source, const PreparedTarget& target, const 
 MatchingTarget
 prepareMatchingTarget (const Eigen::Matrix2Xd& target, const MatchingParameters& parameters)
 {
-  if (!target.allFinite ())
-    throw std::invalid_argument ("[pcl_crf::matching::prepareMatchingTarget] the target scan holds NaN or infinite points");
+  const std::string problem = scanPointsProblem (target, "target");
+  if (!problem.empty ())
+    throw std::invalid_argument ("[pcl_crf::matching::prepareMatchingTarget] " + problem);
   MatchingTarget prepared;
   prepared.points = target;
   prepared.first_copy = firstOfEqualPoints (target);

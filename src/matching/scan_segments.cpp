@@ -12,6 +12,18 @@ namespace matching {
 
 namespace {
 
+/** \throws std::invalid_argument, naming \a method, for a breakpoint angle outside
+ *  (0, π/2] or a range noise that is not a distance ≥ 0 (NaN included). */
+void
+checkBreakpointSettings (const char* method, double breakpoint_angle, double range_noise)
+{
+  if (!(breakpoint_angle > 0.0 && breakpoint_angle <= M_PI / 2) || !(range_noise >= 0.0 && std::isfinite (range_noise)))
+    throw std::invalid_argument (std::string ("[pcl_crf::matching::") + method +
+                                 "] the breakpoint angle must be in (0, pi/2] rad and the range noise a distance "
+                                 ">= 0 m, not " + std::to_string (breakpoint_angle) + " rad and " +
+                                 std::to_string (range_noise) + " m");
+}
+
 /** |b − a| for bearings a, b, wrapped to [0, π]. */
 double
 bearingStep (double a, double b)
@@ -88,6 +100,7 @@ std::vector<ScanSegment>
 segmentScan (const Eigen::Matrix2Xd& points, double breakpoint_angle, double range_noise, BeamGaps gaps,
              int max_missing_returns)
 {
+  checkBreakpointSettings ("segmentScan", breakpoint_angle, range_noise);
   if (max_missing_returns < -1)
     throw std::invalid_argument ("[pcl_crf::matching::segmentScan] max_missing_returns must be >= 0 beams, or -1 for "
                                  "any run; got " + std::to_string (max_missing_returns));
@@ -109,6 +122,7 @@ std::vector<int>
 occludedSurfaces (const Eigen::Matrix2Xd& points, const std::vector<ScanSegment>& segments, double breakpoint_angle,
                   double range_noise)
 {
+  checkBreakpointSettings ("occludedSurfaces", breakpoint_angle, range_noise);
   int previous_end = 0;
   for (std::size_t s = 0; s < segments.size (); ++s) {
     if (segments[s].begin < previous_end || segments[s].end <= segments[s].begin || segments[s].end > points.cols ())

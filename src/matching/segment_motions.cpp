@@ -105,6 +105,30 @@ sampleRadiiSquared (const std::vector<int>& samples, const ScanSegment& segment,
 
 }  // namespace
 
+std::string
+segmentParametersProblem (const SegmentMotionParameters& s)
+{
+  if (!(s.neighbours >= 0 && s.neighbours <= 64))
+    return "segment neighbours must be in [0, 64]";
+  if (!(s.breakpoint_angle > 0.0 && s.breakpoint_angle <= M_PI / 2))
+    return "breakpoint_angle must be in (0, pi/2] rad";
+  if (!(s.range_noise >= 0.0 && std::isfinite (s.range_noise)))
+    return "range_noise must be a distance >= 0 m";
+  if (s.min_segment_points < 1)
+    return "min_segment_points must be >= 1";
+  if (!(s.max_displacement >= 0.0 && std::isfinite (s.max_displacement)))
+    return "max_displacement must be >= 0 m";
+  if (!(s.max_speed >= 0.0 && std::isfinite (s.max_speed)))
+    return "max_speed must be >= 0 m/s (0: no bound)";
+  if (s.max_missing_returns < -1 || s.max_missing_returns > 100000)
+    return "max_missing_returns must be in [0, 100000] beams, or -1 for no bound";
+  if (!(s.overlap_radius > 0.0 && std::isfinite (s.overlap_radius)))
+    return "overlap_radius must be > 0 m";
+  if (!(s.overlap_spacings >= 0.0 && std::isfinite (s.overlap_spacings)))
+    return "overlap_spacings must be >= 0 point spacings (0: overlap_radius everywhere)";
+  return {};
+}
+
 double
 overlapRadius (const SegmentMotionParameters& parameters, double point_spacing)
 {

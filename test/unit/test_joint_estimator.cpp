@@ -725,6 +725,16 @@ TEST (JointEstimation, RejectsBadInput)
   Eigen::Matrix2Xd nan = pair.source;
   nan (0, 3) = std::numeric_limits<double>::quiet_NaN ();
   EXPECT_THROW (joint::estimateJoint (nan, pair.target, pair.odometry, shippedModel ()), std::invalid_argument);
+  Eigen::Matrix2Xd far = pair.target;  // "queries hold NaN or infinite values" before
+  far (1, 7) = 1e200;
+  try {
+    joint::estimateJoint (pair.source, far, pair.odometry, shippedModel ());
+    ADD_FAILURE () << "no error";
+  }
+  catch (const std::invalid_argument& e) {
+    EXPECT_NE (std::string (e.what ()).find ("target point 7 has a coordinate beyond 1e18 m"), std::string::npos)
+        << e.what ();
+  }
   EXPECT_THROW (joint::estimateJoint (pair.source, pair.target, pair.odometry, joint::JointModel ()),
                 std::invalid_argument);
   joint::JointParameters bad;

@@ -22,6 +22,27 @@ constexpr int kNoMatch = -1;
  *  in PCL's single precision (PCL's kd-tree aborts on coordinates near 1e37). */
 constexpr double kMaxCoordinate = 1e18;
 
+/** \brief Largest sensor beam count a dataset may declare (data/README.md) and the
+ *  estimators' sensor checks. Real 2D
+ *  lasers have ~180 to ~4000 beams (a SICK LMS at 0.25 deg: 1081, a Hokuyo UTM-30LX:
+ *  1081, 0.1 deg over 360 deg: 3600); the bound only stops a corrupt count from making
+ *  methods that allocate per beam (cbd, range profiles) take gigabytes. */
+constexpr int kMaxBeamCount = 100000;
+
+/** \brief Why \a points cannot be scan points: "" when every coordinate is finite
+ *  and within ±kMaxCoordinate, else a message naming the first point that is not,
+ *  "<name> point <i> has a NaN or infinite coordinate" or "... a coordinate beyond 1e18 m".
+ *
+ *  \code
+ *  const std::string problem = pcl_crf::scanPointsProblem (source, "source");
+ *  if (!problem.empty ())
+ *    throw std::invalid_argument (problem);
+ *  \endcode
+ */
+std::string
+scanPointsProblem (const Eigen::Matrix2Xd& points, const std::string& name);
+
+
 /** \brief Metadata of the laser that produced a scan. Angles in radians,
  *  ranges in metres. Beam i points at angle_min + i * angle_increment.
  */
@@ -96,7 +117,8 @@ bool
 isRotation (const Rigid2d& T);
 
 /** \brief What makes an odometry reading unusable, or an empty string when nothing does:
- *  a NaN or infinite pose, a pose whose linear part is not a rotation, a covariance with
+ *  a NaN or infinite pose, a pose whose linear part is not a rotation, a translation
+ *  beyond kMaxCoordinate, a covariance with
  *  a NaN or infinite entry, one that is not symmetric or has a negative variance, or an
  *  interval that is negative or not finite. A singular covariance (the zero matrix, say)
  *  is usable: it gives the estimators no prior (matching::MotionGuess::fromOdometry).

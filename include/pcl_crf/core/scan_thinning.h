@@ -49,6 +49,8 @@ struct ThinnedScan
  *  \param[in] points the scan in beam order, in its sensor frame [m]
  *  \param[in] factor thinningFactor
  *  \param[in] scan_spacing medianBeamSpacing of the scan [rad]
+ *  \throws std::invalid_argument when factor > 1 and \a scan_spacing is not an angle > 0,
+ *  or \a points hold a NaN or infinite coordinate.
  */
 ThinnedScan
 thinScan (const Eigen::Matrix2Xd& points, int factor, double scan_spacing);

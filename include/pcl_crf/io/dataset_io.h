@@ -17,12 +17,6 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/** \brief Largest sensor beam count a dataset may declare (data/README.md). Real 2D
- *  lasers have ~180 to ~4000 beams (a SICK LMS at 0.25 deg: 1081, a Hokuyo UTM-30LX:
- *  1081, 0.1 deg over 360 deg: 3600); the bound only stops a corrupt count from making
- *  methods that allocate per beam (cbd, range profiles) take gigabytes. */
-constexpr int kMaxBeamCount = 100000;
-
 /** \brief Checks a scan pair against every rule of the dataset format
  *  (see data/README.md). \throws DatasetError naming the first violation.
  *  \param[in] pair the pair to check

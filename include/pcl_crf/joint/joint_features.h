@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -78,9 +79,19 @@ struct LadderGeometry
   associationStates (int i) const { return candidates.count (i) + 1; }
 };
 
+/** \brief What makes \a geometry inconsistent, or "" when nothing does: candidates that
+ *  are not compressed rows (offsets from 0, non-decreasing, ending at the number of
+ *  targets), not one row per source point, or a candidate that is not a target point;
+ *  inverse scales that are not one column per source point, or neighbour distances
+ *  that are not one per pair of consecutive source points. makeLadderGeometry () gives
+ *  consistent geometries; the functions below that read one check it. */
+std::string
+ladderGeometryProblem (const LadderGeometry& geometry);
+
 /** \brief Builds the geometry of a pair from its candidates.
  *  \param[in] min_spacing lower bound of the residual scales [m] (clustering::FeatureOptions)
  *  \param[in] min_neighbour_distance lower bound of d in the weighted neighbour feature [m]
+ *  \throws std::invalid_argument when the candidates do not fit the scans (ladderGeometryProblem ()).
  */
 LadderGeometry
 makeLadderGeometry (const Eigen::Matrix2Xd& source, const Eigen::Matrix2Xd& target,
@@ -107,6 +118,10 @@ public:
   bool
   empty () const { return rows_.empty (); }
 
+  /** \brief Columns of every rung: the clusters + 1. */
+  int
+  columns () const { return columns_; }
+
   /** \brief Rung i. */
   Eigen::Map<Eigen::MatrixXd>
   operator[] (std::size_t i) { return {values_.data () + offsets_[i], rows_[i], columns_}; }
@@ -124,6 +139,8 @@ private:
 /** \brief Rung log-potentials of every point under the K motions: rungs[i] is
  *  S_a x (K + 1) for point i, entry (s, l) = w · f_rung(s, l) (rungFeatures ()).
  *  \param[in] motions the K cluster motions T_target_source
+ *  \throws std::invalid_argument for an inconsistent \a geometry (ladderGeometryProblem ())
+ *  or weights that are not kJointWeightCount.
  */
 void
 rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& motions, const Eigen::VectorXd& weights,
@@ -133,13 +150,17 @@ rungPotentials (const LadderGeometry& geometry, const std::vector<Rigid2d>& moti
  *  motion T_l, with log(1 + x) for log1p (x): twice as fast here, and within 2e-15 in
  *  absolute value as the arguments are ≥ 0 (as clustering::localLogPotentials ()).
  *  \a rungs must already have their sizes.
+ *  \throws std::invalid_argument when \a rungs do not have one rung per point or \a l
+ *  is not a real cluster of theirs.
  */
 void
 updateRungColumn (const LadderGeometry& geometry, const Rigid2d& motion, const Eigen::VectorXd& weights, int l,
                   RungPotentials& rungs);
 
 /** \brief Rung features of point i in states (s, l), kJointWeightCount wide (zeros outside
- *  the rung block). \param[in] motions the K cluster motions T_target_source */
+ *  the rung block). \param[in] motions the K cluster motions T_target_source
+ *  \throws std::invalid_argument when i is not a point, s not one of its association
+ *  states, l not in [0, K], or the state's candidate not a target point. */
 Eigen::VectorXd
 rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::vector<Rigid2d>& motions);
 
@@ -147,13 +168,16 @@ rungFeatures (const LadderGeometry& geometry, int i, int s, int l, const std::ve
  *  \param[in] moved_here 2 x K, column l = T_l s_i; \param[in] moved_next the same for s_{i+1}
  *  \param[out] potential already (K + 1) x (K + 1) (a reference, so that a ladder can keep
  *  all its edges in one buffer)
+ *  \throws std::invalid_argument when i is not an edge of \a geometry, or the potential
+ *  or the moved points do not fit K.
  */
 void
 clusterEdgePotential (const LadderGeometry& geometry, int i, const Eigen::Matrix2Xd& moved_here,
                       const Eigen::Matrix2Xd& moved_next, const Eigen::VectorXd& weights,
                       Eigen::Ref<Eigen::MatrixXd> potential);
 
-/** \brief Clustering edge features in states (k, l), kJointWeightCount wide. */
+/** \brief Clustering edge features in states (k, l), kJointWeightCount wide.
+ *  \throws std::invalid_argument when i is not an edge of \a geometry or k, l not in [0, K]. */
 Eigen::VectorXd
 clusterEdgeFeatures (const LadderGeometry& geometry, int i, int k, int l, const std::vector<Rigid2d>& motions);
 

@@ -109,7 +109,8 @@ struct LadderResult
  *  \param[in] initial_association initial association state of every point (seeds the refits)
  *  \param[in] initial_cluster initial cluster of every point, in [0, K]
  *  \param[in] options schedule and limits
- *  \throws std::invalid_argument when the sizes do not fit or the options are invalid.
+ *  \throws std::invalid_argument when the sizes do not fit, the geometry is inconsistent
+ *  (ladderGeometryProblem ()) or the options are invalid.
  */
 LadderResult
 inferLadder (const LadderGeometry& geometry, const crf::ChainPotentials& association, const Eigen::VectorXd& weights,

@@ -75,6 +75,7 @@ shapeEmbeddingDimension ();
  *  \param[in] shape the scan's computeShapeFeatures
  *  \param[in] points the scan's points in a common frame (the target frame) [m]
  *  \param[in] position_scale CandidateParameters::shape_position_scale [m]
+ *  \throws std::invalid_argument when \a shape is not kShapeFeatureCount x points.cols ().
  */
 Eigen::MatrixXd
 shapeEmbedding (const Eigen::MatrixXd& shape, const Eigen::Matrix2Xd& points, double position_scale);
@@ -102,7 +103,8 @@ findCandidates (const Eigen::Matrix2Xd& source_in_target, const ShapeNeighbours&
 
 /** \brief The chain state of every source point's match: the position of matches[i]
  *  among i's candidates, or the outlier state (count (i)) for kNoMatch or a target
- *  point that is not a candidate. */
+ *  point that is not a candidate. \throws std::invalid_argument when \a matches is not
+ *  one per source point. */
 std::vector<int>
 matchStates (const Candidates& candidates, const std::vector<int>& matches);
 

@@ -46,7 +46,9 @@ std::vector<int>
 liftLabels (const std::vector<int>& anchors, const std::vector<int>& coarse_labels);
 
 /** \brief The full target indices a kept target point stands for: itself and the
- *  points dropped between it and its kept neighbours. \return [first, last] */
+ *  points dropped between it and its kept neighbours. \return [first, last]
+ *  \throws std::invalid_argument when \a kept_position is not a kept point or the
+ *  kept points are not points of a scan of \a full_size. */
 Eigen::Vector2i
 targetSpan (const ThinnedScan& target, Eigen::Index full_size, int kept_position);
 

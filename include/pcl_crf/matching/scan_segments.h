@@ -45,7 +45,8 @@ enum class BeamGaps
  *  \param[in] max_missing_returns with BeamGaps::MissingReturns, the most beams
  *  without a return that a gap within one segment may span (a longer run is a
  *  breakpoint); −1: any (SegmentMotionParameters::max_missing_returns)
- *  \throws std::invalid_argument for a max_missing_returns below −1
+ *  \throws std::invalid_argument for a max_missing_returns below −1, a breakpoint angle
+ *  outside (0, π/2] or a range noise that is not a distance ≥ 0 (NaN included)
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (pair.source, 0.1745, 0.01);
@@ -94,7 +95,8 @@ longestMissingRun (const Eigen::Matrix2Xd& points, const ScanSegment& segment, d
  *  \param[in] segments its segments (segmentScan () with the same λ and σ)
  *  \param[in] breakpoint_angle λ [rad]
  *  \param[in] range_noise σ [m]
- *  \throws std::invalid_argument when the segments are not consecutive runs of the scan's points
+ *  \throws std::invalid_argument when the segments are not consecutive runs of the scan's
+ *  points, or for λ and σ out of range as segmentScan ()
  *
  *  \code
  *  const auto segments = pcl_crf::matching::segmentScan (scan, 0.1745, 0.01, pcl_crf::matching::BeamGaps::MissingReturns);

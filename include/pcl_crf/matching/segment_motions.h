@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace pcl_crf {
@@ -59,6 +60,14 @@ struct SegmentMotionParameters
    *  before this setting [spacings]; default 2. */
   double overlap_spacings = 2.0;
 };
+
+/** \brief What makes segment parameters unusable, or "" when nothing does: each
+ *  setting outside the range its documentation gives (a NaN included).
+ *  \code
+ *  const std::string problem = pcl_crf::matching::segmentParametersProblem (parameters);
+ *  \endcode */
+std::string
+segmentParametersProblem (const SegmentMotionParameters& parameters);
 
 /** \brief The radius within which a target point explains a moved source point
  *  whose neighbours on its surface lie up to \a point_spacing away:
