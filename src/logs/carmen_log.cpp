@@ -63,7 +63,37 @@ struct RawScan
   Rigid2d odometry_fields = Rigid2d::Identity ();
   /** last ODOM pose seen between the previous laser record and this one. */
   std::optional<Rigid2d> last_odom_before;
+  /** first ODOM pose seen between this laser record and the next one. */
+  std::optional<Rigid2d> first_odom_after;
 };
+
+bool
+samePose (const Rigid2d& a, const Rigid2d& b)
+{
+  const Rigid2d difference = a.inverse () * b;
+  return difference.translation ().norm () < 1e-6 && std::abs (rotationAngle (difference)) < 1e-6;
+}
+
+/** true when the laser records' poses are corrected (reference) poses, as in the Radish
+ *  "-corrected" logs: every record's odometry fields equal its pose, and the ODOM stream
+ *  is re-anchored at the records (the first ODOM line after every record that has one
+ *  equals its pose, and at least one record has one). A raw log's pose and odometry
+ *  fields are both the robot's odometry, so they are equal too; its ODOM stream is the
+ *  odometry itself, which has moved on from a record's pose by the next ODOM line
+ *  unless the robot stands still. */
+bool
+hasCorrectedPoses (const std::vector<RawScan>& scans)
+{
+  bool anchored = false;
+  for (const auto& scan : scans) {
+    if (!samePose (scan.odometry_fields, scan.record.pose))
+      return false;
+    if (scan.first_odom_after && !samePose (*scan.first_odom_after, scan.record.pose))
+      return false;
+    anchored = anchored || scan.first_odom_after.has_value ();
+  }
+  return anchored;
+}
 
 class CarmenParser
 {
@@ -95,11 +125,7 @@ public:
       throw LogError (name_ + ": no FLASER or ROBOTLASER1 record (is this a CARMEN log?)");
     LaserLog log;
     log.path = name_;
-    bool corrected = true;
-    for (const auto& scan : scans_) {
-      const Rigid2d difference = scan.odometry_fields.inverse () * scan.record.pose;
-      corrected = corrected && difference.translation ().norm () < 1e-6 && std::abs (rotationAngle (difference)) < 1e-6;
-    }
+    const bool corrected = hasCorrectedPoses (scans_);
     log.has_reference_poses = corrected;
     for (std::size_t j = 0; j < scans_.size (); ++j) {
       LaserScanRecord record = scans_[j].record;
@@ -181,6 +207,8 @@ private:
   parseOdom (LineCursor& cursor)
   {
     pending_odom_ = pose (cursor, "ODOM", "the pose x y theta");
+    if (!scans_.empty () && !scans_.back ().first_odom_after)
+      scans_.back ().first_odom_after = pending_odom_;
   }
 
   void

@@ -100,6 +100,22 @@ correctedLog (int scans, int beams = 181)
   return log.str ();
 }
 
+/** A raw log as the CARMEN logger writes it: every FLASER's pose and odometry fields
+ *  are both the robot's odometry at the scan (truePose here), and the ODOM stream, when
+ *  there is one, is that odometry sampled between the scans: by the first ODOM line
+ *  after a scan the robot has moved on. */
+std::string
+rawLog (int scans, bool with_odom_stream)
+{
+  std::ostringstream log;
+  for (int j = 0; j < scans; ++j) {
+    log << flaser (j, 91, true) << "\n";
+    if (with_odom_stream)
+      log << odom (truePose (j) * makeRigid2d (0.1, 0.0, 0.01), 100.5 + j) << "\n";
+  }
+  return log.str ();
+}
+
 class LogCarmen : public ::testing::Test
 {
 protected:
@@ -186,6 +202,28 @@ TEST_F (LogCarmen, RawLogTakesOdometryFromTheLaserRecords)
     return makeRigid2d (p.x () + 0.3, p.y () - 0.2, p.z () + 0.1 * j);
   };
   EXPECT_TRUE (log.scans[2].odometry_step.isApprox (fields (1).inverse () * fields (2), 1e-8));
+}
+
+TEST_F (LogCarmen, RawLogWhosePoseEqualsItsOdometryHasNoReferencePoses)
+{
+  // Its pose equals its odometry fields, as in a corrected log, but no ODOM line
+  // re-anchors the stream at a scan's pose: the pose is odometry, not a reference.
+  for (const bool with_odom_stream : {true, false}) {
+    const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (write ("raw.log", rawLog (4, with_odom_stream), false));
+    EXPECT_FALSE (log.has_reference_poses) << "with ODOM stream: " << with_odom_stream;
+    for (const auto& scan : log.scans)
+      EXPECT_FALSE (scan.has_pose);
+    EXPECT_TRUE (log.has_odometry);
+    ASSERT_TRUE (log.scans[2].has_odometry_step);
+    EXPECT_TRUE (log.scans[2].odometry_step.isApprox (truePose (1).inverse () * truePose (2), 1e-8));
+  }
+  // One scan whose next ODOM line is not its pose makes the whole log raw.
+  std::string text = correctedLog (4);
+  const std::string anchor = odom (truePose (2), 0.0) + "\n";
+  ASSERT_NE (text.find (anchor), std::string::npos);
+  text.replace (text.find (anchor), anchor.size (), odom (truePose (2) * makeRigid2d (0.1, 0.0, 0.0), 0.0) + "\n");
+  EXPECT_FALSE (pcl_crf::readCarmenLog (write ("mixed.log", text, false)).has_reference_poses);
+  EXPECT_TRUE (pcl_crf::readCarmenLog (write ("room.log", correctedLog (4), false)).has_reference_poses);
 }
 
 TEST_F (LogCarmen, ReadsGzipLikePlainText)

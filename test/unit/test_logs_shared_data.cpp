@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -51,6 +52,25 @@ TEST (LogSharedData, IntelCorrectedLogHasPosesAndOdometry)
   // the ODOM stream gives a real odometry: a few cm off per ~0.7 m step (not 0, not the pose)
   EXPECT_GT (median (odometry_error), 0.01);
   EXPECT_LT (median (odometry_error), 0.1);
+}
+
+TEST (LogSharedData, EveryShippedCarmenLogReadsAsCorrected)
+{
+  // Their FLASER poses equal their odometry fields, as a raw log's do; the ODOM stream
+  // re-anchored at every scan is what makes them corrected logs.
+  const std::pair<const char*, std::size_t> logs[] = {
+      {"acapulco", 861}, {"belgioioso", 395},       {"csail", 406},
+      {"fhw", 488},      {"freiburg-079", 4791},    {"freiburg-101", 292},
+      {"freiburg-campus", 2008}, {"infinite-corridor", 1941}, {"intel", 910}};
+  for (const auto& [name, scans] : logs) {
+    const std::string path = sharedFile (std::string ("carmen/") + name + "-corrected.log.gz");
+    PCL_CRF_SKIP_WITHOUT_FILE (path);
+    const pcl_crf::LaserLog log = pcl_crf::readLaserLog (path);
+    EXPECT_EQ (log.scans.size (), scans) << name;
+    EXPECT_TRUE (log.has_reference_poses) << name;
+    EXPECT_TRUE (std::all_of (log.scans.begin (), log.scans.end (), [] (const auto& s) { return s.has_pose; }))
+        << name;
+  }
 }
 
 TEST (LogSharedData, DatmoBagHasScansAndMocapPoses)

@@ -25,7 +25,7 @@ namespace {
 /** A corrected CARMEN log: a robot drives +x in the room [-4, 8] x [-3, 5]
  *  (361 beams), the ODOM stream re-anchored at every scan. */
 std::string
-roomLog (int scans)
+roomLog (int scans, bool reanchored = true)
 {
   std::ostringstream log;
   log.precision (10);
@@ -47,7 +47,8 @@ roomLog (int scans)
     }
     log << ' ' << x << ' ' << y << ' ' << theta << ' ' << x << ' ' << y << ' ' << theta << ' ' << j + 0.5
         << " h " << j + 0.5 << "\n";
-    log << "ODOM " << x << ' ' << y << ' ' << theta << " 0 0 0 0 h 0\n";
+    if (reanchored)  // a raw log's pose is odometry, which no ODOM line re-anchors
+      log << "ODOM " << x << ' ' << y << ' ' << theta << " 0 0 0 0 h 0\n";
   }
   return log.str ();
 }
@@ -136,6 +137,22 @@ TEST_F (ToolRun, StepStartMaxPairsAndSavedPairs)
   EXPECT_EQ (again.exit_code, 1);
   EXPECT_NE (again.output.find ("is not a new or empty folder"), std::string::npos) << again.output;
   EXPECT_EQ (pcl_crf::listScanPairs (pairs.string ()).size (), 2u);
+}
+
+TEST_F (ToolRun, RawCarmenLogWhosePoseEqualsItsOdometryHasNoReference)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  // Its FLASER poses equal their odometry fields, as in the corrected room log, but the
+  // ODOM stream is not re-anchored at them: they are odometry, not reference poses.
+  const fs::path raw = dir_ / "raw.log";
+  std::ofstream (raw) << roomLog (6, false);
+  const auto run = runTool ("pcl_crf_run", raw.string ());
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Read 6 scans"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("(reference poses: no, odometry: yes)"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("The log has no reference poses: no ego-motion error to report."), std::string::npos)
+      << run.output;
+  EXPECT_NE (runTool ("pcl_crf_run", log ()).output.find ("(reference poses: yes, odometry: yes)"), std::string::npos);
 }
 
 TEST_F (ToolRun, ScansStampedOutOfOrderAreCountedAndTheirPairsHaveNoInterval)

@@ -36,14 +36,20 @@ struct CarmenReadOptions
  *  record becomes one LaserScanRecord with the logged pose (\c has_pose) and
  *  the odometry step since the previous scan:
  *
- *  - If every laser record's odometry fields equal its pose (the Radish
- *    "-corrected" logs, whose pose is the SLAM-corrected one), the odometry
- *    comes from the ODOM stream, which these logs re-anchor at every scan:
+ *  - If every laser record's odometry fields equal its pose and the ODOM stream
+ *    is re-anchored at the records (the first ODOM line after every record that
+ *    has one equals its pose, and at least one has one), the log is a corrected
+ *    log (the Radish "-corrected" logs, whose pose is the SLAM-corrected one) and
+ *    the odometry comes from the ODOM stream:
  *    step(j -> j+1) = inv(T_j) * ODOM_last, T_j the corrected pose of scan j and
  *    ODOM_last the last ODOM line before scan j+1 (if scan j+1 has no ODOM line
  *    since scan j, it has no odometry step).
  *  - Otherwise (raw logs) the laser records' odometry fields are odometry:
- *    step(j -> j+1) = inv(O_j) * O_j+1.
+ *    step(j -> j+1) = inv(O_j) * O_j+1. A raw log's pose equals its odometry
+ *    fields too (both are the robot's odometry), but its ODOM stream is the
+ *    odometry itself, which moves on after a record; a raw log without ODOM lines
+ *    is raw as well. (A raw log of a robot that never moves reads as corrected:
+ *    its poses are then right.)
  *
  *  LaserLog::has_reference_poses is true in the first case only (a raw log's
  *  pose is not a reference). The laser's mounting offset is not applied.
