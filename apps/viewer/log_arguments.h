@@ -79,7 +79,8 @@ printLogOptionsHelp ()
               "                         range noise; 0 keeps every tracked object)\n");
   print_info (" CARMEN logs (.log, .log.gz; FLASER, ROBOTLASER1, ODOM):\n");
   print_info ("  --min-range M          shortest valid reading [m] (default: 0.01)\n");
-  print_info ("  --max-range M          longest valid reading [m] (default: 30; 81.9, 50, 32.76 = no return)\n");
+  print_info ("  --max-range M          longest valid reading [m] (default: 30; 81.9, 50, 32.76 = no return;\n"
+              "                         a ROBOTLASER1 record's own maximum range applies when shorter)\n");
   print_info (" ROS1 bags (.bag; sensor_msgs/LaserScan + geometry_msgs/PoseStamped) - %s:\n",
               rosbagSupported () ? "supported in this build"
                                  : "NOT supported in this build (needs librosbag-dev at configure time)");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 namespace pcl_crf {
@@ -211,8 +212,11 @@ private:
       scans_.back ().first_odom_after = pending_odom_;
   }
 
+  /** Adds a laser record's scan. Its valid readings lie in [min_range, max_range] of the
+   *  options and short of \a no_return_from, the record's own maximum range (+inf when
+   *  it has none): a sensor writes its maximum range for a beam without a return. */
   void
-  addScan (const SensorInfo& sensor, const std::vector<double>& ranges, const Rigid2d& pose,
+  addScan (const SensorInfo& sensor, const std::vector<double>& ranges, double no_return_from, const Rigid2d& pose,
            const Rigid2d& odometry_fields, double stamp)
   {
     RawScan scan;
@@ -221,7 +225,7 @@ private:
     Eigen::Index n = 0;
     for (std::size_t i = 0; i < ranges.size (); ++i) {
       const double r = ranges[i];
-      if (!(r >= options_.min_range && r <= options_.max_range))
+      if (!(r >= options_.min_range && r <= options_.max_range && r < no_return_from))
         continue;
       const double angle = sensor.angle_min + static_cast<double> (i) * sensor.angle_increment;
       scan.record.points.col (n++) << r * std::cos (angle), r * std::sin (angle);
@@ -253,7 +257,7 @@ private:
     const Rigid2d odometry_fields = pose (cursor, "FLASER", "the odometry x y theta");
     const double stamp = number (cursor, "FLASER", "the timestamp");
     recordEnd (cursor, "FLASER", n);
-    addScan (sensor, ranges, laser_pose, odometry_fields, stamp);
+    addScan (sensor, ranges, std::numeric_limits<double>::infinity (), laser_pose, odometry_fields, stamp);
   }
 
   // ROBOTLASER1 laser_type start_angle fov resolution max_range accuracy remission_mode
@@ -288,14 +292,16 @@ private:
     for (int i = 0; i < static_cast<int> (remissions); ++i)
       number (cursor, record, "a remission value");
     sensor.beam_count = n;
-    sensor.range_max = logged_max > 0.0 ? std::min (options_.max_range, logged_max) : options_.max_range;
+    // Its own maximum range marks beams without a return; a missing one (0) marks none.
+    const double no_return_from = logged_max > 0.0 ? logged_max : std::numeric_limits<double>::infinity ();
+    sensor.range_max = std::min (options_.max_range, no_return_from);
     const Rigid2d laser_pose = pose (cursor, record, "the laser pose x y theta");
     const Rigid2d robot_pose = pose (cursor, record, "the robot pose x y theta");
     for (int i = 0; i < 5; ++i)
       number (cursor, record, "a velocity or safety field");
     const double stamp = number (cursor, record, "the timestamp");
     recordEnd (cursor, record, n);
-    addScan (sensor, ranges, laser_pose, robot_pose, stamp);
+    addScan (sensor, ranges, no_return_from, laser_pose, robot_pose, stamp);
   }
 
   std::string name_;

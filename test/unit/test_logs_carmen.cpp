@@ -280,6 +280,33 @@ TEST_F (LogCarmen, ReadsRobotLaser1)
   EXPECT_TRUE (scan.odometry_step.isApprox (makeRigid2d (1.0, 0.0, 0.0), 1e-12));
 }
 
+TEST_F (LogCarmen, RobotLaser1ReadingsAtItsOwnMaximumRangeAreNoReturns)
+{
+  // A laser of 8 m maximum range writes 8 for a beam without a return; readings of
+  // 1, 7.9, 8, 8.5 and 25 m: only 1 and 7.9 are returns, though all are within the
+  // reader's 30 m.
+  const std::string line = "ROBOTLASER1 0 -1.0 2.0 0.5 8 0.01 0 5 1 7.9 8 8.5 25 0 "
+                           "0 0 0 0 0 0 0 0 0 0 0 10 host 10\n";
+  const std::string path = write ("short_range.log", line, false);
+  const pcl_crf::LaserLog log = pcl_crf::readCarmenLog (path);
+  ASSERT_EQ (log.scans.size (), 1u);
+  EXPECT_DOUBLE_EQ (log.scans[0].sensor.range_max, 8.0);
+  EXPECT_EQ (log.scans[0].beams, (std::vector<int>{0, 1}));
+  // The smaller of the two applies: with max_range 7.9 m a reading of 7.9 m is still
+  // a return (max_range is inclusive, as for FLASER), with 5 m it is not, ...
+  pcl_crf::CarmenReadOptions options;
+  options.max_range = 7.9;
+  EXPECT_EQ (pcl_crf::readCarmenLog (path, options).scans[0].beams, (std::vector<int>{0, 1}));
+  options.max_range = 5.0;
+  EXPECT_EQ (pcl_crf::readCarmenLog (path, options).scans[0].beams, (std::vector<int>{0}));
+  EXPECT_DOUBLE_EQ (pcl_crf::readCarmenLog (path, options).scans[0].sensor.range_max, 5.0);
+  // ... and a record without a maximum range (0) keeps every reading up to max_range.
+  std::string unknown = line;
+  unknown.replace (unknown.find (" 8 0.01"), 7, " 0 0.01");
+  EXPECT_EQ (pcl_crf::readCarmenLog (write ("no_max.log", unknown, false)).scans[0].beams,
+             (std::vector<int>{0, 1, 2, 3, 4}));
+}
+
 TEST_F (LogCarmen, ErrorsNameTheFileLineAndProblem)
 {
   const auto expectError = [] (const std::string& path, const std::string& fragment) {

@@ -10,13 +10,16 @@ namespace pcl_crf {
 /** \brief How readCarmenLog interprets a CARMEN log.
  *
  *  Readings outside [min_range, max_range] are "no return" and dropped: CARMEN
- *  logs write 81.9, 50 or 32.76 (and similar) for beams that saw nothing.
+ *  logs write 81.9, 50 or 32.76 (and similar) for beams that saw nothing. A
+ *  ROBOTLASER1 record carries its laser's own maximum range: readings at or beyond
+ *  it are no return as well (the smaller of the two ranges applies).
  */
 struct CarmenReadOptions
 {
   /** shortest valid reading [m] (default 0.01; shorter readings are dropped). */
   double min_range = 0.01;
-  /** longest valid reading [m] (default 30; longer readings are dropped). */
+  /** longest valid reading [m] (default 30; longer readings are dropped, and so are a
+   *  ROBOTLASER1 record's readings at or beyond its own maximum range when shorter). */
   double max_range = 30.0;
   /** angle of the first beam [rad] (default -pi/2: the scans cover 180 degrees
    *  from right to left). */
@@ -31,7 +34,8 @@ struct CarmenReadOptions
  *  file's first bytes).
  *
  *  Understood records: \c FLASER (front laser, old format), \c ROBOTLASER1
- *  (new format; its own start angle and resolution are used) and \c ODOM.
+ *  (new format; its own start angle, resolution and maximum range are used) and
+ *  \c ODOM.
  *  Other records (PARAM, NEFF, RLASER, comments, ...) are skipped. Each laser
  *  record becomes one LaserScanRecord with the logged pose (\c has_pose) and
  *  the odometry step since the previous scan:
