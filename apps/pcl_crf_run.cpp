@@ -219,9 +219,32 @@ writeCsvHeader (std::ostream& csv)
          "translation_error,rotation_error,odom_translation_error,odom_rotation_error,seconds\n";
 }
 
+/** Why none of the pairs run had a reference ego motion: the log has no reference poses,
+ *  no pair has one at both of its scans (--start and --step choose the pairs, and a
+ *  bag's pose track may not cover every scan), or the pairs that have were skipped. */
+std::string
+whyNoReference (const pcl_crf::LaserLog& log, const std::vector<std::size_t>& firsts, std::size_t step)
+{
+  if (!log.has_reference_poses)
+    return "The log has no reference poses";
+  std::size_t with_pose = 0, covered = 0;
+  for (const auto& scan : log.scans)
+    with_pose += scan.has_pose ? 1 : 0;
+  for (const std::size_t k : firsts)
+    covered += log.scans[k].has_pose && log.scans[k + step].has_pose ? 1 : 0;
+  const auto count = [] (std::size_t n) { return std::to_string (n) + (n == 1 ? " pair" : " pairs"); };
+  if (covered > 0)
+    return "Every pair with reference poses at both scans was skipped (" + count (covered) +
+           "; see the warnings above)";
+  return "No pair has reference poses at both of its scans (" + count (firsts.size ()) + " run; the log has them for " +
+         std::to_string (with_pose) + " of its " + std::to_string (log.scans.size ()) +
+         " scans; --start and --step choose the pairs)";
+}
+
 void
 printSummary (const RunArguments& args, std::size_t pairs, std::size_t skipped, double predict_seconds,
-              double wall_seconds, const ErrorStats& method, const ErrorStats& odometry)
+              double wall_seconds, const ErrorStats& method, const ErrorStats& odometry,
+              const std::string& why_no_reference)
 {
   print_highlight ("Ran ");
   print_value ("%s", args.method.c_str ());
@@ -237,7 +260,7 @@ printSummary (const RunArguments& args, std::size_t pairs, std::size_t skipped, 
   if (skipped > 0)
     print_warn ("Skipped %zu pairs (see the warnings above).\n", skipped);
   if (method.translation.empty ()) {
-    print_info ("The log has no reference poses: no ego-motion error to report.\n");
+    print_info ("%s: no ego-motion error to report.\n", why_no_reference.c_str ());
     return;
   }
   const auto row = [] (const char* name, const ErrorStats& s) {
@@ -374,7 +397,8 @@ run (const RunArguments& args)
   }
   if (done == skipped)
     throw std::runtime_error ("every pair failed (see the warnings above)");
-  printSummary (args, done - skipped, skipped, predict_seconds, wall.toc () / 1000.0, method_errors, odometry_errors);
+  printSummary (args, done - skipped, skipped, predict_seconds, wall.toc () / 1000.0, method_errors, odometry_errors,
+                whyNoReference (log, firsts, step));
   if (!args.output.empty () && !args.quiet)
     print_info ("Wrote %zu predictions to %s\n", done - skipped, args.output.c_str ());
   if (!csv_path.empty () && !args.quiet)

@@ -229,6 +229,51 @@ TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)
   EXPECT_NE (run.output.find ("no topic /scan in the bag; it has: /base_scan"), std::string::npos) << run.output;
 }
 
+TEST_F (ToolRun, PairsWithoutReferencePosesAtBothScansAreToldApartFromALogWithout)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  if (!pcl_crf::rosbagSupported ())
+    GTEST_SKIP () << "built without ROS bag support";
+  // The room log as a bag whose pose track covers scans 0, 2 and 4 only (poses 2 s apart,
+  // more than the 0.5 s gap that is interpolated).
+  std::ifstream text (log ());
+  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
+  for (std::size_t k = 0; k < room.scans.size (); ++k) {
+    room.scans[k].stamp += 100.0;
+    room.scans[k].has_pose = k % 2 == 0;
+  }
+  pcl_crf::RosbagReadOptions topics;
+  topics.pose_topic = "/mocap";
+  const std::string bag = (dir_ / "gaps.bag").string ();
+  pcl_crf::writeRosbagLog (bag, room, topics);
+  auto run = runTool ("pcl_crf_run", bag + " --pose-topic /mocap -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_EQ (run.output.find ("The log has no reference poses"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("No pair has reference poses at both of its scans (5 pairs run; the log has them for 3 "
+                              "of its 6 scans; --start and --step choose the pairs): no ego-motion error to report."),
+             std::string::npos)
+      << run.output;
+  run = runTool ("pcl_crf_run", bag + " --pose-topic /mocap --step 2 -q");
+  EXPECT_NE (run.output.find ("Ego motion vs the reference poses (2 pairs)"), std::string::npos) << run.output;
+  // Poses for scans 0 and 1 only, and scan 1 without a return: the one pair with both
+  // poses is skipped, the pairs run have none.
+  for (std::size_t k = 0; k < room.scans.size (); ++k)
+    room.scans[k].has_pose = k < 2;
+  room.scans[1].points.resize (2, 0);
+  room.scans[1].beams.clear ();
+  pcl_crf::writeRosbagLog (bag, room, topics);
+  run = runTool ("pcl_crf_run", bag + " --pose-topic /mocap -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("Every pair with reference poses at both scans was skipped (1 pair; see the warnings "
+                              "above): no ego-motion error to report."),
+             std::string::npos)
+      << run.output;
+  // A log without reference poses says so, as before.
+  run = runTool ("pcl_crf_run", bag + " -q");
+  EXPECT_NE (run.output.find ("The log has no reference poses: no ego-motion error to report."), std::string::npos)
+      << run.output;
+}
+
 TEST_F (ToolRun, OptionsForTheOtherKindOfLogAreNamed)
 {
   PCL_CRF_SKIP_WITHOUT_APPS ();
