@@ -297,6 +297,7 @@ run (const RunArguments& args)
     print_info (" ms (reference poses: %s, odometry: %s)\n", log.has_reference_poses ? "yes" : "no",
                 log.has_odometry ? "yes" : "no");
   }
+  pcl_crf::apps::printLogWarnings (log);
   const std::size_t unordered = pcl_crf::countStampsNotAfterTheLast (log);
   if (unordered > 0)
     print_warn ("%zu of the %zu scans are stamped at or before the scan before them: the pairs they end have no "

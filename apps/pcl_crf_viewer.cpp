@@ -133,6 +133,7 @@ public:
     if (!args.log.empty ()) {
       pcl_crf::apps::warnAboutOptionsTheLogIgnores (args.log_args, pcl_crf::detectLaserLogFormat (args.log));
       log_ = pcl_crf::readLaserLog (args.log, args.log_args.read);
+      pcl_crf::apps::printLogWarnings (*log_);
       if (args.log_args.pairs.label_points && !log_->has_reference_poses)
         throw std::invalid_argument ("--label needs reference poses, and " + args.log + " has none");
       count_ = pcl_crf::logPairCount (log_->scans.size (), args.log_args.pairs.step);

@@ -111,6 +111,14 @@ warnAboutOptionsTheLogIgnores (const LogArguments& args, LaserLogFormat format)
                                     : "this CARMEN log does not read it");
 }
 
+/** Prints what the reader left out of \a log (LaserLog::warnings), one warning each. */
+inline void
+printLogWarnings (const LaserLog& log)
+{
+  for (const std::string& warning : log.warnings)
+    pcl::console::print_warn ("%s.\n", warning.c_str ());
+}
+
 /** Reads the log options; false after a print_error. */
 inline bool
 parseLogArguments (int argc, char** argv, LogArguments& args)

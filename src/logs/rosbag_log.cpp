@@ -207,14 +207,74 @@ toRecord (const sensor_msgs::LaserScan& message)
   return record;
 }
 
+/** \brief "path: N <noun>s of <topic> <description> were left out (the first at T s):
+ *  <consequence>", a LaserLog warning. */
+std::string
+repeatedStampsWarning (const std::string& path, std::size_t count, const std::string& noun, const std::string& topic,
+                       const std::string& description, double first_stamp, const std::string& consequence)
+{
+  return path + ": " + std::to_string (count) + " " + noun + (count == 1 ? "" : "s") + " of " + topic + " " +
+         description + (count == 1 ? " was" : " were") + " left out (the first at " + stampText (first_stamp) +
+         " s): " + consequence;
+}
+
+/** \brief Keeps the first of every run of scans stamped alike (\a scans sorted by stamp):
+ *  two of them would make a pair without a time step, with one reference pose for both.
+ *  \return the warning, or "" when every stamp is distinct. */
+std::string
+dropScansStampedAlike (const std::string& path, const std::string& topic, std::vector<LaserScanRecord>& scans)
+{
+  const auto alike = [] (const LaserScanRecord& a, const LaserScanRecord& b) { return a.stamp == b.stamp; };
+  const auto first = std::adjacent_find (scans.begin (), scans.end (), alike);
+  if (first == scans.end ())
+    return {};
+  const double stamp = first->stamp;
+  const auto end = std::unique (scans.begin (), scans.end (), alike);
+  const auto dropped = static_cast<std::size_t> (scans.end () - end);
+  scans.erase (end, scans.end ());
+  return repeatedStampsWarning (path, dropped, "scan", topic, "stamped like the scan before it", stamp,
+                                "a pair of two such scans would have no time step, and one reference pose for both");
+}
+
+bool
+samePose (const Rigid2d& a, const Rigid2d& b)
+{
+  const Rigid2d difference = a.inverse () * b;
+  return difference.translation ().norm () < 1e-9 && std::abs (rotationAngle (difference)) < 1e-9;
+}
+
+/** \brief The track of \a samples shifted by -delay. Samples stamped alike with the same
+ *  pose are one; a stamp that carries different poses is left out (which is right is
+ *  unknown), and its bag stamp added to \a conflicting. */
 PoseTrack
-toTrack (StampedPoses samples, double delay)
+toTrack (StampedPoses samples, double delay, std::vector<double>& conflicting)
 {
   std::stable_sort (samples.begin (), samples.end (),
                     [] (const auto& a, const auto& b) { return a.first < b.first; });
   PoseTrack track;
-  for (const auto& sample : samples)
-    track.append (sample.first - delay, sample.second);
+  for (std::size_t i = 0, j = 0; i < samples.size (); i = j) {
+    bool agree = true;
+    for (j = i + 1; j < samples.size () && samples[j].first == samples[i].first; ++j)
+      agree = agree && samePose (samples[i].second, samples[j].second);
+    if (agree)
+      track.append (samples[i].first - delay, samples[i].second);
+    else
+      conflicting.push_back (samples[i].first);
+  }
+  return track;
+}
+
+/** \brief The track of a pose topic's samples (toTrack ()), with a warning in \a log
+ *  when stamps carrying different poses were left out. */
+PoseTrack
+poseTrack (const StampedPoses& samples, const std::string& topic, double delay, LaserLog& log)
+{
+  std::vector<double> conflicting;
+  PoseTrack track = toTrack (samples, delay, conflicting);
+  if (!conflicting.empty ())
+    log.warnings.push_back (repeatedStampsWarning (log.path, conflicting.size (), "stamp", topic,
+                                                   "carrying different poses", conflicting.front (),
+                                                   "which pose is right is unknown; the track interpolates across it"));
   return track;
 }
 
@@ -308,9 +368,12 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
     throw LogError (path + ": topic " + options.scan_topic + " holds no laser scan");
   std::stable_sort (log.scans.begin (), log.scans.end (),
                     [] (const LaserScanRecord& a, const LaserScanRecord& b) { return a.stamp < b.stamp; });
+  const std::string repeated = dropScansStampedAlike (path, options.scan_topic, log.scans);
+  if (!repeated.empty ())
+    log.warnings.push_back (repeated);
 
   if (!options.pose_topic.empty ()) {
-    const PoseTrack ego = toTrack (samples[options.pose_topic], options.pose_delay);
+    const PoseTrack ego = poseTrack (samples[options.pose_topic], options.pose_topic, options.pose_delay, log);
     for (auto& scan : log.scans) {
       Rigid2d pose;
       scan.has_pose = ego.interpolate (scan.stamp, pose, options.max_pose_gap);
@@ -330,7 +393,7 @@ readRosbagLog (const std::string& path, const RosbagReadOptions& options)
     object.name = topic;
     object.kind = options.object_kind;
     object.half_extent = options.object_half_extent;
-    object.track = toTrack (samples[topic], options.pose_delay);
+    object.track = poseTrack (samples[topic], topic, options.pose_delay, log);
     log.objects.push_back (std::move (object));
   }
   return log;

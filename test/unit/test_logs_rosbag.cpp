@@ -242,6 +242,66 @@ TEST_F (LogRosbag, PosesThatCoverNoScanAreAnError)
   }
 }
 
+TEST_F (LogRosbag, ScansStampedLikeTheScanBeforeAreLeftOutWithAWarning)
+{
+  // Scan 2 carries scan 1's stamp (a copied stamp): the pair (1, 2) had no time step, and
+  // the one pose at that stamp made its reference ego motion the identity.
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  pcl_crf::RosbagReadOptions options;
+  options.pose_topic = "/ego_pose";
+  const std::string path = (dir_ / "copied.bag").string ();
+  pcl_crf::LaserLog written = smallLog ();
+  written.objects.clear ();
+  written.scans[2].stamp = written.scans[1].stamp;
+  written.scans[2].has_pose = false;  // the pose topic holds one pose at the stamp
+  pcl_crf::writeRosbagLog (path, written, options);
+  const pcl_crf::LaserLog log = pcl_crf::readRosbagLog (path, options);
+  ASSERT_EQ (log.scans.size (), 3u);
+  EXPECT_TRUE (log.scans[1].points.isApprox (written.scans[1].points, 1e-5));  // the first in the bag stays
+  EXPECT_NEAR (log.scans[2].stamp, written.scans[3].stamp, 1e-6);
+  EXPECT_EQ (pcl_crf::countStampsNotAfterTheLast (log), 0u);
+  ASSERT_EQ (log.warnings.size (), 1u);
+  EXPECT_NE (log.warnings[0].find ("copied.bag: 1 scan of /scan stamped like the scan before it was left out (the "
+                                   "first at 1000.100 s)"),
+             std::string::npos)
+      << log.warnings[0];
+  EXPECT_EQ (pcl_crf::readRosbagLog (path).scans.size (), 3u);  // without the pose topic too
+  written = smallLog ();
+  written.objects.clear ();
+  pcl_crf::writeRosbagLog (path, written, options);
+  EXPECT_TRUE (pcl_crf::readRosbagLog (path, options).warnings.empty ());
+}
+
+TEST_F (LogRosbag, PoseStampsCarryingDifferentPosesAreLeftOutOfTheirTrack)
+{
+  // Two poses of the car stamped 1000.05 s, the first 1 m off: the track took the first.
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  pcl_crf::LaserLog written = smallLog ();
+  pcl_crf::PoseTrack& track = written.objects[0].track;
+  ASSERT_NEAR (track.stamps[15], 1000.05, 1e-9);
+  track.stamps.insert (track.stamps.begin () + 15, track.stamps[15]);
+  track.poses.insert (track.poses.begin () + 15, track.poses[15] * makeRigid2d (1.0, 0.0, 0.0));
+  // ... and the sample at 1000.1 s twice, alike: one sample, no warning.
+  track.stamps.insert (track.stamps.begin () + 21, track.stamps[21]);
+  track.poses.insert (track.poses.begin () + 21, track.poses[21]);
+  pcl_crf::RosbagReadOptions options;
+  options.pose_topic = "/ego_pose";
+  options.object_topics = {"/car_pose"};
+  const std::string path = (dir_ / "car.bag").string ();
+  pcl_crf::writeRosbagLog (path, written, options);
+  const pcl_crf::LaserLog log = pcl_crf::readRosbagLog (path, options);
+  ASSERT_EQ (log.objects.size (), 1u);
+  EXPECT_EQ (log.objects[0].track.stamps.size (), 39u);
+  Rigid2d car;
+  ASSERT_TRUE (log.objects[0].track.interpolate (1000.05, car));
+  EXPECT_TRUE (car.isApprox (makeRigid2d (3.15, 1.0, 0.5), 1e-6)) << pcl_crf::toXYTheta (car).transpose ();
+  ASSERT_EQ (log.warnings.size (), 1u);
+  EXPECT_NE (log.warnings[0].find ("car.bag: 1 stamp of /car_pose carrying different poses was left out (the first at "
+                                   "1000.050 s): which pose is right is unknown"),
+             std::string::npos)
+      << log.warnings[0];
+}
+
 TEST_F (LogRosbag, AScanWhoseRangesCountExceedsItsBytesIsAnError)
 {
   // ROS's deserializer sized the ranges from a corrupt count of 2^31 - 1 first: 8 GB and

@@ -274,6 +274,32 @@ TEST_F (ToolRun, PairsWithoutReferencePosesAtBothScansAreToldApartFromALogWithou
       << run.output;
 }
 
+TEST_F (ToolRun, ABagsScansStampedAlikeAreLeftOutWithAWarning)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  if (!pcl_crf::rosbagSupported ())
+    GTEST_SKIP () << "built without ROS bag support";
+  std::ifstream text (log ());
+  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
+  for (auto& scan : room.scans)
+    scan.stamp += 100.0;
+  room.scans[3].stamp = room.scans[2].stamp;  // a copied stamp
+  room.scans[3].has_pose = false;
+  pcl_crf::RosbagReadOptions topics;
+  topics.pose_topic = "/mocap";
+  const std::string bag = (dir_ / "copied.bag").string ();
+  pcl_crf::writeRosbagLog (bag, room, topics);
+  const auto run = runTool ("pcl_crf_run", bag + " --pose-topic /mocap -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("copied.bag: 1 scan of /scan stamped like the scan before it was left out (the first at "
+                              "102.500 s)"),
+             std::string::npos)
+      << run.output;
+  EXPECT_NE (run.output.find ("Ran icp on 4 pairs"), std::string::npos) << run.output;
+  EXPECT_NE (run.output.find ("Ego motion vs the reference poses (4 pairs)"), std::string::npos) << run.output;
+  EXPECT_EQ (run.output.find ("stamped at or before"), std::string::npos) << run.output;
+}
+
 TEST_F (ToolRun, OptionsForTheOtherKindOfLogAreNamed)
 {
   PCL_CRF_SKIP_WITHOUT_APPS ();

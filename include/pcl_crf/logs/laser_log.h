@@ -115,6 +115,10 @@ struct LaserLog
   bool has_reference_poses = false;
   /** true when the scans carry odometry steps. */
   bool has_odometry = false;
+  /** what the reader left out of the log and why, one message each naming the file
+   *  (e.g. a bag's scans stamped like the scan before them); empty when nothing was.
+   *  The tools print them as warnings. */
+  std::vector<std::string> warnings;
 };
 
 /** \brief How many scans of \a log are stamped at or before the scan before them (a

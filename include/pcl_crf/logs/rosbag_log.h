@@ -62,6 +62,13 @@ listRosbagTopics (const std::string& path);
  *  at stamp + pose_delay times T_pose_laser (\c has_pose false where the track
  *  does not cover the scan). Every object topic becomes a TrackedObject.
  *  Bags carry no odometry here (LaserLog::has_odometry is false).
+ *
+ *  Repeated stamps: of the scans stamped alike only the first in the bag's order
+ *  is kept (a pair of two would have no time step, and one reference pose at their
+ *  stamp for both); pose samples stamped alike with the same pose are one sample,
+ *  and a stamp that carries different poses is left out of its track (which pose is
+ *  right is unknown; the track interpolates across it). Either adds a message to
+ *  LaserLog::warnings naming the topic, the count and the first such stamp.
  *  \throws LogError naming the bag and topic (missing file, unknown topic
  *  listing the bag's topics, wrong message type, no scan, built without
  *  ROS bag support).
