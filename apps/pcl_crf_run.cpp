@@ -182,13 +182,17 @@ struct ErrorStats
       sum += x;
     return v.empty () ? std::numeric_limits<double>::quiet_NaN () : sum / v.size ();
   }
+  /** the middle value, or the mean of the two middle values of an even count. */
   static double
   median (std::vector<double> v)
   {
     if (v.empty ())
       return std::numeric_limits<double>::quiet_NaN ();
-    std::nth_element (v.begin (), v.begin () + v.size () / 2, v.end ());
-    return v[v.size () / 2];
+    const auto middle = v.begin () + static_cast<std::ptrdiff_t> (v.size () / 2);
+    std::nth_element (v.begin (), middle, v.end ());
+    if (v.size () % 2 == 1)
+      return *middle;
+    return 0.5 * (*middle + *std::max_element (v.begin (), middle));
   }
 };
 

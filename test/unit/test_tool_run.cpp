@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -23,16 +25,18 @@ using pcl_crf::test::runTool;
 namespace {
 
 /** A corrected CARMEN log: a robot drives +x in the room [-4, 8] x [-3, 5]
- *  (361 beams), the ODOM stream re-anchored at every scan. */
+ *  (361 beams), the ODOM stream re-anchored at every scan. The raw odometry before
+ *  scan j is off the true pose by \a odometry_offsets[j] in x (default 2 cm). */
 std::string
-roomLog (int scans, bool reanchored = true)
+roomLog (int scans, bool reanchored = true, const std::vector<double>& odometry_offsets = {})
 {
   std::ostringstream log;
   log.precision (10);
   for (int j = 0; j < scans; ++j) {
     const double x = 0.3 * j, y = 0.05 * j, theta = 0.02 * j;
-    if (j > 0)  // last raw odometry before this scan: the true step plus 2 cm
-      log << "ODOM " << x + 0.02 << ' ' << y << ' ' << theta << " 0 0 0 " << j << " h " << j << "\n";
+    const double offset = j < static_cast<int> (odometry_offsets.size ()) ? odometry_offsets[j] : 0.02;
+    if (j > 0)  // last raw odometry before this scan: the true step plus the offset
+      log << "ODOM " << x + offset << ' ' << y << ' ' << theta << " 0 0 0 " << j << " h " << j << "\n";
     log << "FLASER 361";
     for (int i = 0; i < 361; ++i) {
       const double a = theta - M_PI / 2 + i * M_PI / 360, dx = std::cos (a), dy = std::sin (a);
@@ -115,6 +119,18 @@ TEST_F (ToolRun, RunsIcpOverALogAndWritesPredictionsAndCsv)
   const Eigen::Vector3d ego = pcl_crf::toXYTheta (prediction.T_source_target);
   EXPECT_NEAR (ego.z (), 0.02, 0.01);
   EXPECT_NEAR (ego.head<2> ().norm (), std::hypot (0.3, 0.05), 0.05);
+}
+
+TEST_F (ToolRun, TheSummarysMedianOfAnEvenCountIsTheMeanOfTheTwoMiddleValues)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  // Four pairs whose odometry is off by 2, 3, 5 and 9 cm: the median is 4 cm (the upper
+  // middle value, 5 cm, was printed).
+  std::ofstream (dir_ / "offsets.log") << roomLog (5, true, {0.0, 0.02, 0.03, 0.05, 0.09});
+  const auto run = runTool ("pcl_crf_run", (dir_ / "offsets.log").string () + " --method icp -q");
+  ASSERT_EQ (run.exit_code, 0) << run.output;
+  EXPECT_NE (run.output.find ("odometry   translation error mean 0.0475 m, median 0.0400 m"), std::string::npos)
+      << run.output;
 }
 
 TEST_F (ToolRun, StepStartMaxPairsAndSavedPairs)
