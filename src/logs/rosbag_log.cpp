@@ -1,4 +1,5 @@
 #include <pcl_crf/logs/rosbag_log.h>
+#include <pcl_crf/logs/rosbag_structure.h>
 
 #include <pcl_crf/core/decimal_text.h>
 #include <pcl_crf/io/dataset_io.h>
@@ -36,11 +37,16 @@ yawOf (const geometry_msgs::Quaternion& q)
   return yawOfQuaternion (q.w, q.x, q.y, q.z);
 }
 
+/** \brief Opens \a bag; for reading, once checkRosbagStructure () has checked what
+ *  librosbag will follow (\a topics: those whose messages will be read). */
 void
-openBag (rosbag::Bag& bag, const std::string& path, rosbag::bagmode::BagMode mode)
+openBag (rosbag::Bag& bag, const std::string& path, rosbag::bagmode::BagMode mode,
+         const std::vector<std::string>& topics = {})
 {
   if (mode == rosbag::bagmode::Read && !std::filesystem::is_regular_file (path))
     throw LogError (path + ": bag file not found");
+  if (mode == rosbag::bagmode::Read)
+    checkRosbagStructure (path, topics);  // librosbag trusts the bag's lengths and offsets
   try {
     bag.open (path, mode);
   }
@@ -297,11 +303,12 @@ rosbagSupported ()
   return true;
 }
 
+namespace {
+
+/** \brief The topics of the open \a bag with their message types, sorted by topic. */
 std::vector<std::pair<std::string, std::string>>
-listRosbagTopics (const std::string& path)
+topicsOf (const rosbag::Bag& bag, const std::string& path)
 {
-  rosbag::Bag bag;
-  openBag (bag, path, rosbag::bagmode::Read);
   std::set<std::pair<std::string, std::string>> topics;
   try {
     rosbag::View view (bag);
@@ -314,25 +321,35 @@ listRosbagTopics (const std::string& path)
   return {topics.begin (), topics.end ()};
 }
 
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>>
+listRosbagTopics (const std::string& path)
+{
+  rosbag::Bag bag;
+  openBag (bag, path, rosbag::bagmode::Read);
+  return topicsOf (bag, path);
+}
+
 LaserLog
 readRosbagLog (const std::string& path, const RosbagReadOptions& options)
 {
   checkOptions (path, options);
-  const auto topics = listRosbagTopics (path);
-  requireTopic (path, topics, options.scan_topic, "sensor_msgs/LaserScan");
   std::vector<std::string> pose_topics = options.object_topics;
   if (!options.pose_topic.empty ())
     pose_topics.insert (pose_topics.begin (), options.pose_topic);
+  std::vector<std::string> wanted = pose_topics;
+  wanted.push_back (options.scan_topic);
+  rosbag::Bag bag;
+  openBag (bag, path, rosbag::bagmode::Read, wanted);
+  const auto topics = topicsOf (bag, path);
+  requireTopic (path, topics, options.scan_topic, "sensor_msgs/LaserScan");
   for (const auto& topic : pose_topics)
     requireTopic (path, topics, topic, "geometry_msgs/PoseStamped");
 
-  rosbag::Bag bag;
-  openBag (bag, path, rosbag::bagmode::Read);
   LaserLog log;
   log.path = path;
   std::map<std::string, StampedPoses> samples;
-  std::vector<std::string> wanted = pose_topics;
-  wanted.push_back (options.scan_topic);
   try {
     rosbag::View view (bag, rosbag::TopicQuery (wanted));
     for (const rosbag::MessageInstance& message : view) {

@@ -1,6 +1,7 @@
 #include <pcl_crf/logs/log_pairs.h>
 #include <pcl_crf/logs/read_laser_log.h>
 #include <pcl_crf/logs/rosbag_log.h>
+#include <pcl_crf/logs/rosbag_structure.h>
 
 #include <gtest/gtest.h>
 
@@ -8,9 +9,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <string>
 #include <unistd.h>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 using pcl_crf::makeRigid2d;
@@ -333,6 +337,234 @@ TEST_F (LogRosbag, AScanWhoseRangesCountExceedsItsBytesIsAnError)
                std::string::npos)
         << error.what ();
   }
+}
+
+/** Little-endian bytes of an integer, as the bag format writes them. */
+template <typename T>
+std::string
+littleEndian (T value)
+{
+  std::string bytes (sizeof (T), '\0');
+  for (std::size_t i = 0; i < sizeof (T); ++i)
+    bytes[i] = static_cast<char> ((static_cast<std::uint64_t> (value) >> (8 * i)) & 0xff);
+  return bytes;
+}
+
+/** A record: header length, header fields (length, name=value; op first), data length,
+ *  data. */
+std::string
+bagRecord (std::uint8_t op, std::vector<std::pair<std::string, std::string>> fields, const std::string& data)
+{
+  fields.insert (fields.begin (), {"op", std::string (1, static_cast<char> (op))});
+  std::string header;
+  for (const auto& [name, value] : fields)
+    header += littleEndian<std::uint32_t> (name.size () + 1 + value.size ()) + name + "=" + value;
+  return littleEndian<std::uint32_t> (header.size ()) + header + littleEndian<std::uint32_t> (data.size ()) + data;
+}
+
+/** A ROS bag v2.0 written byte by byte: one chunk holding a connection record and two
+ *  messages of it, the chunk's index, the connection, the chunk info; and where each is. */
+struct SyntheticBag
+{
+  std::string bytes;
+  std::size_t chunk_at = 0, index_at = 0, index_pos = 0, chunk_info_at = 0;
+  std::size_t first_entry_offset_at = 0;  // file offset of the first index entry's offset field
+  std::size_t first_message_at = 0;       // file offset of the first message data record
+
+  explicit SyntheticBag (const std::string& compression = "none")
+  {
+    const std::string connection_fields = bagRecord (7, {{"conn", littleEndian<std::uint32_t> (0)},
+                                                         {"topic", "/scan"}}, "type=x");
+    std::string chunk = connection_fields;
+    std::vector<std::uint32_t> offsets;
+    for (const std::string payload : {"first", "second"}) {
+      offsets.push_back (static_cast<std::uint32_t> (chunk.size ()));
+      chunk += bagRecord (2, {{"conn", littleEndian<std::uint32_t> (0)},
+                              {"time", littleEndian<std::uint64_t> (offsets.size ())}}, payload);
+    }
+    bytes = "#ROSBAG V2.0\n";
+    bytes += bagRecord (3, {{"index_pos", littleEndian<std::uint64_t> (0)},
+                            {"conn_count", littleEndian<std::uint32_t> (1)},
+                            {"chunk_count", littleEndian<std::uint32_t> (1)}}, std::string (16, ' '));
+    chunk_at = bytes.size ();
+    bytes += bagRecord (5, {{"compression", compression},
+                            {"size", littleEndian<std::uint32_t> (chunk.size ())}}, chunk);
+    first_message_at = bytes.size () - chunk.size () + offsets.front ();
+    index_at = bytes.size ();
+    std::string entries;
+    for (const std::uint32_t offset : offsets)
+      entries += littleEndian<std::uint64_t> (offset) + littleEndian (offset);
+    bytes += bagRecord (4, {{"ver", littleEndian<std::uint32_t> (1)},
+                            {"conn", littleEndian<std::uint32_t> (0)}, {"count", littleEndian<std::uint32_t> (2)}},
+                        entries);
+    first_entry_offset_at = bytes.size () - entries.size () + 8;
+    index_pos = bytes.size ();
+    bytes += connection_fields;
+    chunk_info_at = bytes.size ();
+    bytes += bagRecord (6, {{"ver", littleEndian<std::uint32_t> (1)},
+                            {"chunk_pos", littleEndian<std::uint64_t> (chunk_at)},
+                            {"start_time", littleEndian<std::uint64_t> (1)}, {"end_time", littleEndian<std::uint64_t> (2)},
+                            {"count", littleEndian<std::uint32_t> (1)}},
+                        littleEndian<std::uint32_t> (0) + littleEndian<std::uint32_t> (2));
+    set ("index_pos=", littleEndian<std::uint64_t> (index_pos));
+  }
+
+  /** Overwrites the value after the first \a name (e.g. "index_pos=") with \a value. */
+  void
+  set (const std::string& name, const std::string& value, std::size_t from = 0)
+  {
+    bytes.replace (bytes.find (name, from) + name.size (), value.size (), value);
+  }
+};
+
+class LogRosbagStructure : public LogRosbag
+{
+protected:
+  /** Writes \a bytes as a bag; expects checkRosbagStructure, reading /scan, to throw
+   *  naming \a fragment. */
+  void
+  expectError (const std::string& bytes, const std::string& fragment)
+  {
+    const std::string path = write (bytes);
+    try {
+      pcl_crf::checkRosbagStructure (path, {"/scan"});
+      ADD_FAILURE () << "no exception; expected " << fragment;
+    }
+    catch (const pcl_crf::LogError& error) {
+      EXPECT_NE (std::string (error.what ()).find ("corrupt.bag: not a readable ROS bag (truncated or corrupted?): "),
+                 std::string::npos)
+          << error.what ();
+      EXPECT_NE (std::string (error.what ()).find (fragment), std::string::npos) << error.what ();
+    }
+  }
+
+  std::string
+  write (const std::string& bytes)
+  {
+    const std::string path = (dir_ / "corrupt.bag").string ();
+    std::ofstream (path, std::ios::binary | std::ios::trunc) << bytes;
+    return path;
+  }
+};
+
+TEST_F (LogRosbagStructure, AWellFormedBagPasses)
+{
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (write (SyntheticBag ().bytes), {"/scan"}));
+  // compressed chunks: their offsets are checked against their size alone
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (write (SyntheticBag ("bz2").bytes), {"/scan"}));
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (write ("#ROSBAG V1.2\nanother version")));  // left to librosbag
+  EXPECT_THROW (pcl_crf::checkRosbagStructure ((dir_ / "missing.bag").string ()), pcl_crf::LogError);
+  if (!pcl_crf::rosbagSupported ())
+    return;
+  const std::string path = (dir_ / "written.bag").string ();
+  pcl_crf::RosbagReadOptions topics;
+  topics.pose_topic = "/ego_pose";
+  topics.object_topics = {"/car_pose"};
+  pcl_crf::writeRosbagLog (path, smallLog (), topics);
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (path, {"/scan", "/ego_pose", "/car_pose"}));
+}
+
+TEST_F (LogRosbagStructure, OnlyTheMessagesOfTheTopicsReadAreChecked)
+{
+  // librosbag follows no index entry of a topic it does not read: a damaged one there
+  // does no harm (listRosbagTopics reads none).
+  std::string bytes = SyntheticBag ().bytes;
+  const std::size_t entry = SyntheticBag ().first_entry_offset_at;
+  bytes[entry + 1] = static_cast<char> (bytes[entry + 1] ^ 0xff);
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (write (bytes)));
+  EXPECT_NO_THROW (pcl_crf::checkRosbagStructure (write (bytes), {"/ego_pose"}));
+  expectError (bytes, "an index entry's offset");
+}
+
+TEST_F (LogRosbagStructure, ATruncatedBagNamesWhereItEnds)
+{
+  const SyntheticBag bag;
+  expectError (bag.bytes.substr (0, 20), "at byte 13, the record runs past the end of the file (20 bytes)");
+  expectError (bag.bytes.substr (0, bag.index_pos + 10),
+               "at byte 13, 1 connection and 1 chunk-info records cannot fit in the 10 bytes after index_pos");
+  expectError (bag.bytes.substr (0, bag.index_pos), "at byte 13, index_pos " + std::to_string (bag.index_pos) +
+                                                        " lies outside the records");
+  expectError (bag.bytes.substr (0, bag.bytes.size () - 3),
+               "at byte " + std::to_string (bag.chunk_info_at) + ", the chunk info record's data (8 bytes) runs past "
+               "the end of the file");
+}
+
+TEST_F (LogRosbagStructure, FlippedLengthsAndOffsetsAreNamed)
+{
+  const SyntheticBag bag;
+  const auto flipped = [&] (std::size_t at, unsigned char mask = 0xff) {
+    std::string bytes = bag.bytes;
+    bytes[at] = static_cast<char> (bytes[at] ^ mask);
+    return bytes;
+  };
+  const std::string chunk = std::to_string (bag.chunk_at), index = std::to_string (bag.index_at);
+  // header lengths: 4 bytes more swallow the data length, 0xff00 more run past the file
+  expectError (flipped (bag.chunk_at, 0x04), "at byte " + chunk + ", the chunk record's header holds a field whose "
+                                             "length runs past it, or without '='");
+  expectError (flipped (bag.chunk_at + 1), "at byte " + chunk + ", the record runs past the end of the file (" +
+                                               std::to_string (bag.bytes.size ()) + " bytes)");
+  expectError (flipped (bag.index_at + 3), "at byte " + index + ", the record runs past the end of the file");
+  // a header field's length, a data length
+  expectError (flipped (bag.index_at + 4), "at byte " + index + ", the index data record's header holds a field");
+  expectError (flipped (bag.first_entry_offset_at - 8 - 2), "at byte " + index + ", the index data record's data (");
+  // index entries: beyond the chunk, and one byte into a message record (whose header
+  // length is then read from the middle of its bytes)
+  expectError (flipped (bag.first_entry_offset_at + 1), "at byte " + std::to_string (bag.first_entry_offset_at - 8) +
+                                                            ", an index entry's offset");
+  expectError (flipped (bag.first_entry_offset_at, 0x01),
+               "at byte " + std::to_string (bag.first_message_at + 1) + ", the record runs past the end of the chunk");
+  // a compressed chunk: its offsets are checked against its size only
+  const SyntheticBag packed ("bz2");
+  std::string bytes = packed.bytes;
+  bytes[packed.first_entry_offset_at + 1] = '\x7f';
+  expectError (bytes, "lies beyond its chunk's");
+  // the bag header's and the chunk info's numbers
+  SyntheticBag wrong;
+  wrong.set ("index_pos=", littleEndian<std::uint64_t> (wrong.bytes.size () + 5));
+  expectError (wrong.bytes, "at byte 13, index_pos " + std::to_string (wrong.bytes.size () + 5) +
+                                " lies outside the records");
+  wrong = SyntheticBag ();
+  wrong.set ("conn_count=", littleEndian<std::uint32_t> (1000000));
+  expectError (wrong.bytes, "at byte 13, 1000000 connection and 1 chunk-info records cannot fit in the");
+  wrong = SyntheticBag ();
+  wrong.set ("index_pos=", littleEndian<std::uint64_t> (0));
+  expectError (wrong.bytes, "at byte 13, the bag has no index (index_pos 0");
+  wrong = SyntheticBag ();
+  wrong.set ("chunk_pos=", littleEndian<std::uint64_t> (wrong.index_pos + 1));
+  expectError (wrong.bytes, "at byte " + std::to_string (wrong.chunk_info_at) + ", chunk_pos " +
+                                std::to_string (wrong.index_pos + 1) + " lies outside the chunks");
+  wrong = SyntheticBag ();
+  wrong.set ("chunk_pos=", littleEndian<std::uint64_t> (wrong.index_at));
+  expectError (wrong.bytes, "at byte " + index + ", expected a chunk record, found another kind of record");
+  wrong = SyntheticBag ();
+  wrong.set ("count=", littleEndian<std::uint32_t> (3), wrong.chunk_info_at);
+  expectError (wrong.bytes, "a chunk info of 3 connections holds 8 bytes, not 8 per connection");
+  wrong = SyntheticBag ();
+  wrong.set ("size=", littleEndian<std::uint32_t> (7));
+  expectError (wrong.bytes, "at byte " + chunk + ", an uncompressed chunk of 7 bytes holds");
+}
+
+TEST_F (LogRosbagStructure, ReadingACorruptBagIsALogErrorNamingTheByte)
+{
+  // A flipped byte in an index entry of /scan made librosbag read out of its chunk and
+  // crash pcl_crf_run (SIGSEGV); a truncated bag said "wanted 4 bytes, read 0 bytes".
+  PCL_CRF_SKIP_WITHOUT_ROSBAG ();
+  const std::string path = (dir_ / "cut.bag").string ();
+  pcl_crf::LaserLog log = smallLog ();
+  log.objects.clear ();
+  pcl_crf::writeRosbagLog (path, log);
+  fs::resize_file (path, fs::file_size (path) - 100);
+  for (const auto& read : {std::function<void ()> ([&] { pcl_crf::readRosbagLog (path); }),
+                           std::function<void ()> ([&] { pcl_crf::listRosbagTopics (path); })})
+    try {
+      read ();
+      ADD_FAILURE () << "no exception";
+    }
+    catch (const pcl_crf::LogError& error) {
+      EXPECT_NE (std::string (error.what ()).find ("cut.bag: not a readable ROS bag (truncated or corrupted?): at byte "),
+                 std::string::npos)
+          << error.what ();
+    }
 }
 
 TEST_F (LogRosbag, WithoutSupportEveryCallSaysHowToEnableIt)

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -314,6 +315,37 @@ TEST_F (ToolRun, ABagsScansStampedAlikeAreLeftOutWithAWarning)
   EXPECT_NE (run.output.find ("Ran icp on 4 pairs"), std::string::npos) << run.output;
   EXPECT_NE (run.output.find ("Ego motion vs the reference poses (4 pairs)"), std::string::npos) << run.output;
   EXPECT_EQ (run.output.find ("stamped at or before"), std::string::npos) << run.output;
+}
+
+TEST_F (ToolRun, ACorruptBagIsAnErrorNamingTheByteNotACrash)
+{
+  PCL_CRF_SKIP_WITHOUT_APPS ();
+  if (!pcl_crf::rosbagSupported ())
+    GTEST_SKIP () << "built without ROS bag support";
+  std::ifstream text (log ());
+  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
+  for (auto& scan : room.scans)
+    scan.stamp += 100.0;
+  const fs::path bag = dir_ / "flipped.bag";
+  pcl_crf::writeRosbagLog (bag.string (), room);
+  std::string bytes;
+  {
+    std::ifstream in (bag, std::ios::binary);
+    bytes.assign (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
+  }
+  // The chunk's index record (fields conn, count, op, ver): after ver's value and the data
+  // length, each entry is a time (8 bytes) and the message's offset in the chunk (4).
+  const std::size_t op = bytes.find (std::string ("op=\x04", 4));
+  ASSERT_NE (op, std::string::npos);
+  const std::size_t first_offset = bytes.find ("ver=", op) + 4 + 4 + 4 + 8;
+  bytes[first_offset + 3] = static_cast<char> (bytes[first_offset + 3] ^ 0xff);  // 4 GB past the chunk
+  std::ofstream (bag, std::ios::binary | std::ios::trunc) << bytes;
+  const auto run = runTool ("pcl_crf_run", bag.string () + " -q");
+  EXPECT_EQ (run.exit_code, 1) << run.output;  // librosbag read out of bounds: SIGSEGV
+  EXPECT_NE (run.output.find ("flipped.bag: not a readable ROS bag (truncated or corrupted?): at byte " +
+                              std::to_string (first_offset - 8) + ", an index entry's offset"),
+             std::string::npos)
+      << run.output;
 }
 
 TEST_F (ToolRun, OptionsForTheOtherKindOfLogAreNamed)

@@ -48,7 +48,8 @@ bool
 rosbagSupported ();
 
 /** \brief The topics of a ROS1 bag with their message types, sorted by topic.
- *  \throws LogError for a missing or unreadable bag. */
+ *  \throws LogError for a missing or unreadable bag, or one whose records are
+ *  truncated or corrupted (checkRosbagStructure (), naming the byte). */
 std::vector<std::pair<std::string, std::string>>
 listRosbagTopics (const std::string& path);
 
@@ -71,7 +72,8 @@ listRosbagTopics (const std::string& path);
  *  LaserLog::warnings naming the topic, the count and the first such stamp.
  *  \throws LogError naming the bag and topic (missing file, unknown topic
  *  listing the bag's topics, wrong message type, no scan, built without
- *  ROS bag support).
+ *  ROS bag support), or the byte where the bag's records are truncated or
+ *  corrupted (checkRosbagStructure (), run first on the topics read).
  *
  *  \code
  *  pcl_crf::RosbagReadOptions options;
