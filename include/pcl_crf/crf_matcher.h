@@ -61,7 +61,11 @@ namespace pcl_crf {
  *
  *  // or inside ICP (#include <pcl/registration/icp.h>), which moves the source by its
  *  // own estimate: a matcher of its own, its guess left at the identity (a clone of the
- *  // one above would apply the odometry a second time)
+ *  // one above would apply the odometry a second time). ICP's SVD fits every pair the
+ *  // matcher keeps, a moving object's too: on the shipped test split, started at the
+ *  // motion above, it ended 0.71 m off the static world's translation on average
+ *  // (0.011 m for getTransformation (); 0.058 m with a CorrespondenceRejectorMedianDistance
+ *  // of factor 1). Among movers, take getTransformation () or JointCRFEstimator.
  *  pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ>::Ptr inner (new pcl_crf::CRFMatcher<pcl::PointXYZ, pcl::PointXYZ>);
  *  inner->loadModel ("data/models/crf-matching.model");
  *  pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
