@@ -78,6 +78,16 @@ protected:
   {
     return (dir_ / "room.log").string ();
   }
+  /** The room log's scans and corrected poses, stamped from 100 s on (bags need positive times). */
+  pcl_crf::LaserLog
+  roomForBag () const
+  {
+    std::ifstream text (log ());
+    pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
+    for (auto& scan : room.scans)
+      scan.stamp += 100.0;
+    return room;
+  }
   fs::path dir_;
 };
 
@@ -204,11 +214,7 @@ TEST_F (ToolRun, RunsOnARosBagWithMocapPoses)
   PCL_CRF_SKIP_WITHOUT_APPS ();
   if (!pcl_crf::rosbagSupported ())
     GTEST_SKIP () << "built without ROS bag support";
-  // the room log's scans and corrected poses, as a bag with an ego pose topic
-  std::ifstream text (log ());
-  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
-  for (auto& scan : room.scans)
-    scan.stamp += 100.0;  // bags need positive times
+  const pcl_crf::LaserLog room = roomForBag ();  // as a bag with an ego pose topic
   pcl_crf::RosbagReadOptions topics;
   topics.scan_topic = "/base_scan";
   topics.pose_topic = "/mocap";
@@ -253,12 +259,9 @@ TEST_F (ToolRun, PairsWithoutReferencePosesAtBothScansAreToldApartFromALogWithou
     GTEST_SKIP () << "built without ROS bag support";
   // The room log as a bag whose pose track covers scans 0, 2 and 4 only (poses 2 s apart,
   // more than the 0.5 s gap that is interpolated).
-  std::ifstream text (log ());
-  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
-  for (std::size_t k = 0; k < room.scans.size (); ++k) {
-    room.scans[k].stamp += 100.0;
+  pcl_crf::LaserLog room = roomForBag ();
+  for (std::size_t k = 0; k < room.scans.size (); ++k)
     room.scans[k].has_pose = k % 2 == 0;
-  }
   pcl_crf::RosbagReadOptions topics;
   topics.pose_topic = "/mocap";
   const std::string bag = (dir_ / "gaps.bag").string ();
@@ -296,10 +299,7 @@ TEST_F (ToolRun, ABagsScansStampedAlikeAreLeftOutWithAWarning)
   PCL_CRF_SKIP_WITHOUT_APPS ();
   if (!pcl_crf::rosbagSupported ())
     GTEST_SKIP () << "built without ROS bag support";
-  std::ifstream text (log ());
-  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
-  for (auto& scan : room.scans)
-    scan.stamp += 100.0;
+  pcl_crf::LaserLog room = roomForBag ();
   room.scans[3].stamp = room.scans[2].stamp;  // a copied stamp
   room.scans[3].has_pose = false;
   pcl_crf::RosbagReadOptions topics;
@@ -322,10 +322,7 @@ TEST_F (ToolRun, ACorruptBagIsAnErrorNamingTheByteNotACrash)
   PCL_CRF_SKIP_WITHOUT_APPS ();
   if (!pcl_crf::rosbagSupported ())
     GTEST_SKIP () << "built without ROS bag support";
-  std::ifstream text (log ());
-  pcl_crf::LaserLog room = pcl_crf::readCarmenLog (text, "room");
-  for (auto& scan : room.scans)
-    scan.stamp += 100.0;
+  pcl_crf::LaserLog room = roomForBag ();
   const fs::path bag = dir_ / "flipped.bag";
   pcl_crf::writeRosbagLog (bag.string (), room);
   std::string bytes;
