@@ -15,6 +15,9 @@
 namespace pcl_crf {
 namespace {
 
+/** Poses a log writes as text agree to this [m, rad] when they are one pose. */
+constexpr double kSamePoseTolerance = 1e-6;
+
 /** Reads whitespace-separated words and numbers from one log line. */
 class LineCursor
 {
@@ -68,13 +71,6 @@ struct RawScan
   std::optional<Rigid2d> first_odom_after;
 };
 
-bool
-samePose (const Rigid2d& a, const Rigid2d& b)
-{
-  const Rigid2d difference = a.inverse () * b;
-  return difference.translation ().norm () < 1e-6 && std::abs (rotationAngle (difference)) < 1e-6;
-}
-
 /** true when the laser records' poses are corrected (reference) poses, as in the Radish
  *  "-corrected" logs: every record's odometry fields equal its pose, and the ODOM stream
  *  is re-anchored at the records (the first ODOM line after every record that has one
@@ -87,9 +83,9 @@ hasCorrectedPoses (const std::vector<RawScan>& scans)
 {
   bool anchored = false;
   for (const auto& scan : scans) {
-    if (!samePose (scan.odometry_fields, scan.record.pose))
+    if (!samePose (scan.odometry_fields, scan.record.pose, kSamePoseTolerance))
       return false;
-    if (scan.first_odom_after && !samePose (*scan.first_odom_after, scan.record.pose))
+    if (scan.first_odom_after && !samePose (*scan.first_odom_after, scan.record.pose, kSamePoseTolerance))
       return false;
     anchored = anchored || scan.first_odom_after.has_value ();
   }

@@ -5,6 +5,13 @@
 
 namespace pcl_crf {
 
+bool
+samePose (const Rigid2d& a, const Rigid2d& b, double tolerance)
+{
+  const Rigid2d difference = a.inverse () * b;
+  return difference.translation ().norm () < tolerance && std::abs (rotationAngle (difference)) < tolerance;
+}
+
 void
 PoseTrack::append (double stamp, const Rigid2d& pose)
 {

@@ -31,6 +31,9 @@ namespace {
 
 using StampedPoses = std::vector<std::pair<double, Rigid2d>>;
 
+/** Pose messages of one stamp agree to this [m, rad] when they carry one pose. */
+constexpr double kSamePoseTolerance = 1e-9;
+
 double
 yawOf (const geometry_msgs::Quaternion& q)
 {
@@ -242,13 +245,6 @@ dropScansStampedAlike (const std::string& path, const std::string& topic, std::v
                                 "a pair of two such scans would have no time step, and one reference pose for both");
 }
 
-bool
-samePose (const Rigid2d& a, const Rigid2d& b)
-{
-  const Rigid2d difference = a.inverse () * b;
-  return difference.translation ().norm () < 1e-9 && std::abs (rotationAngle (difference)) < 1e-9;
-}
-
 /** \brief The track of \a samples shifted by -delay. Samples stamped alike with the same
  *  pose are one; a stamp that carries different poses is left out (which is right is
  *  unknown), and its bag stamp added to \a conflicting. */
@@ -261,7 +257,7 @@ toTrack (StampedPoses samples, double delay, std::vector<double>& conflicting)
   for (std::size_t i = 0, j = 0; i < samples.size (); i = j) {
     bool agree = true;
     for (j = i + 1; j < samples.size () && samples[j].first == samples[i].first; ++j)
-      agree = agree && samePose (samples[i].second, samples[j].second);
+      agree = agree && samePose (samples[i].second, samples[j].second, kSamePoseTolerance);
     if (agree)
       track.append (samples[i].first - delay, samples[i].second);
     else

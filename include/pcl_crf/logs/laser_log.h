@@ -128,4 +128,9 @@ struct LaserLog
 std::size_t
 countStampsNotAfterTheLast (const LaserLog& log);
 
+/** \brief true when poses \a a and \a b differ by less than \a tolerance in translation
+ *  [m] and in rotation [rad]: the same pose, as a log's text or a bag's messages repeat it. */
+bool
+samePose (const Rigid2d& a, const Rigid2d& b, double tolerance);
+
 }  // namespace pcl_crf
